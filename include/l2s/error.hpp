@@ -1,0 +1,45 @@
+#pragma once
+// The error family of l2scalib. Invalid input or configuration throws one of
+// these; expected failures (no board in a frame) are statuses in results.
+
+#include <cassert>
+#include <stdexcept>
+#include <string>
+
+namespace l2s {
+
+/// Base of every exception the library throws.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A file that is missing, unreadable or does not follow DATASET.md.
+/// The message always starts with the file's path.
+class FileError : public Error {
+ public:
+  FileError(const std::string& path, const std::string& problem)
+      : Error(path + ": " + problem), path_(path) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+/// A parameter outside its valid range; the message names the field.
+class ParamError : public Error {
+ public:
+  ParamError(const std::string& field, const std::string& problem)
+      : Error("parameter " + field + ": " + problem), field_(field), problem_(problem) {}
+  const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string field_;
+  std::string problem_;
+};
+
+}  // namespace l2s
+
+/// Internal invariant; compiled out in release builds.
+#define L2S_ASSERT(condition) assert(condition)
