@@ -1,0 +1,132 @@
+// Reading a dataset folder (DATASET.md): the YAML files at open, frames on demand.
+#include <l2s/io/dataset.hpp>
+
+#include <l2s/error.hpp>
+#include <l2s/io/camera_yaml.hpp>
+#include <l2s/io/image_io.hpp>
+#include <l2s/io/ring_recovery.hpp>
+#include <l2s/io/target_yaml.hpp>
+#include <l2s/io/transform_yaml.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace l2s::io {
+namespace {
+
+constexpr std::size_t kStemsListed = 5;  // enough to see the pattern, short enough to read
+
+std::string join(const std::string& folder, const std::string& name) {
+  return (fs::path(folder) / name).string();
+}
+
+// Stems of the regular files `sub/*ext`; hidden and temporary files are not frames.
+std::set<std::string> stems_in(const std::string& folder, const std::string& sub,
+                               const std::string& ext) {
+  const std::string directory = join(folder, sub);
+  std::error_code error;
+  if (!fs::is_directory(directory, error)) throw FileError(directory, "missing folder");
+  std::set<std::string> stems;
+  for (const auto& entry : fs::directory_iterator(directory, error)) {
+    const fs::path& p = entry.path();
+    if (p.extension() != ext || p.filename().string()[0] == '.') continue;
+    if (entry.is_regular_file(error)) stems.insert(p.stem().string());
+  }
+  if (error) throw FileError(directory, "cannot list folder: " + error.message());
+  return stems;
+}
+
+// "000003 (no left/000003.png), ..." for stems missing from some of the folders.
+std::string describe_mismatch(const std::set<std::string>& lidar, const std::set<std::string>& left,
+                              const std::set<std::string>& right) {
+  std::set<std::string> all = lidar;
+  all.insert(left.begin(), left.end());
+  all.insert(right.begin(), right.end());
+  std::string text;
+  std::size_t listed = 0, mismatched = 0;
+  for (const std::string& stem : all) {
+    std::string missing;
+    if (!lidar.count(stem)) missing += " lidar/" + stem + ".pcd";
+    if (!left.count(stem)) missing += " left/" + stem + ".png";
+    if (!right.count(stem)) missing += " right/" + stem + ".png";
+    if (missing.empty()) continue;
+    if (listed++ < kStemsListed) text += (text.empty() ? "" : ", ") + stem + " (no" + missing + ")";
+    ++mismatched;
+  }
+  if (mismatched > kStemsListed)
+    text += ", and " + std::to_string(mismatched - kStemsListed) + " more";
+  return text;
+}
+
+void check_size(const Image& image, const CameraInfo& camera, const std::string& image_path,
+                const std::string& yaml_name) {
+  if (image.width == camera.width && image.height == camera.height) return;
+  throw FileError(image_path, "image is " + std::to_string(image.width) + "x" +
+                                  std::to_string(image.height) + " but " + yaml_name + " says " +
+                                  std::to_string(camera.width) + "x" +
+                                  std::to_string(camera.height));
+}
+
+}  // namespace
+
+Dataset Dataset::open(const std::string& folder) {
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) throw FileError(folder, "no such dataset folder");
+  Dataset dataset;
+  dataset.folder_ = folder;
+  dataset.cameras_ = read_stereo_camera(join(folder, "left.yaml"), join(folder, "right.yaml"));
+  const std::string target_path = join(folder, "target.yaml");
+  dataset.has_target_file_ = fs::exists(target_path, error);
+  dataset.target_ = read_target_or_default(target_path);
+
+  const auto lidar = stems_in(folder, "lidar", ".pcd");
+  const auto left = stems_in(folder, "left", ".png");
+  const auto right = stems_in(folder, "right", ".png");
+  if (lidar != left || lidar != right)
+    throw FileError(folder, "frame stems differ between lidar/, left/ and right/: " +
+                                describe_mismatch(lidar, left, right));
+  if (lidar.empty()) throw FileError(folder, "no frames (lidar/*.pcd, left/*.png, right/*.png)");
+  dataset.stems_.assign(lidar.begin(), lidar.end());  // std::set: already sorted
+  return dataset;
+}
+
+Frame Dataset::load(std::size_t index) const {
+  if (index >= stems_.size())
+    throw ParamError("index", std::to_string(index) + " is past the last of " +
+                                  std::to_string(stems_.size()) + " frames in " + folder_);
+  Frame frame;
+  frame.stem = stems_[index];
+  frame.lidar = read_pcd(lidar_path(frame.stem));
+  frame.left = read_image(left_path(frame.stem));
+  frame.right = read_image(right_path(frame.stem));
+  // Both YAMLs share one size (read_stereo_camera), so left and right match too.
+  check_size(frame.left, cameras_.left, left_path(frame.stem), "left.yaml");
+  check_size(frame.right, cameras_.right, right_path(frame.stem), "right.yaml");
+  if (!frame.lidar.has_ring()) {
+    recover_rings(frame.lidar);
+    frame.rings_recovered = true;
+  }
+  return frame;
+}
+
+std::optional<Eigen::Isometry3d> Dataset::ground_truth() const {
+  const std::string path = join(folder_, "ground_truth.yaml");
+  std::error_code error;
+  if (!fs::exists(path, error)) return std::nullopt;
+  return read_transform(path);
+}
+
+std::string Dataset::lidar_path(const std::string& stem) const {
+  return join(folder_, "lidar/" + stem + ".pcd");
+}
+std::string Dataset::left_path(const std::string& stem) const {
+  return join(folder_, "left/" + stem + ".png");
+}
+std::string Dataset::right_path(const std::string& stem) const {
+  return join(folder_, "right/" + stem + ".png");
+}
+
+}  // namespace l2s::io

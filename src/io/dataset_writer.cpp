@@ -1,0 +1,64 @@
+// Writing a dataset folder that Dataset::open and tools/check_dataset.py accept.
+#include <l2s/io/dataset.hpp>
+
+#include <l2s/error.hpp>
+#include <l2s/io/camera_yaml.hpp>
+#include <l2s/io/image_io.hpp>
+#include <l2s/io/target_yaml.hpp>
+#include <l2s/io/transform_yaml.hpp>
+
+#include "io/stereo_check.hpp"
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace l2s::io {
+namespace {
+
+std::string join(const std::string& folder, const std::string& name) {
+  return (fs::path(folder) / name).string();
+}
+
+void check_image(const Image& image, const CameraInfo& camera, const char* field) {
+  if (image.width != camera.width || image.height != camera.height)
+    throw ParamError(field, "image is " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) + ", the camera " +
+                                std::to_string(camera.width) + "x" + std::to_string(camera.height));
+}
+
+}  // namespace
+
+DatasetWriter::DatasetWriter(const std::string& folder, const StereoCamera& cameras,
+                             const Target& target)
+    : folder_(folder), cameras_(cameras) {
+  // Refuse what the reader would reject, before any file exists.
+  check_rectified_pair(cameras, join(folder, "left.yaml"), join(folder, "right.yaml"));
+  target.validate();
+  for (const char* sub : {"lidar", "left", "right"}) {
+    std::error_code error;
+    fs::create_directories(join(folder, sub), error);
+    if (error) throw FileError(join(folder, sub), "cannot create folder: " + error.message());
+  }
+  write_camera_info(join(folder, "left.yaml"), cameras.left);
+  write_camera_info(join(folder, "right.yaml"), cameras.right);
+  write_target(join(folder, "target.yaml"), target);
+}
+
+void DatasetWriter::write(const Frame& frame, PcdEncoding encoding) const {
+  if (frame.stem.empty() || frame.stem[0] == '.' ||
+      frame.stem.find_first_of("/\\") != std::string::npos)
+    throw ParamError("frame.stem", "'" + frame.stem + "' is not a plain file stem");
+  check_image(frame.left, cameras_.left, "frame.left");
+  check_image(frame.right, cameras_.right, "frame.right");
+  // Lidar last: a frame counts once its .pcd exists, and then its images do too.
+  write_png(join(folder_, "left/" + frame.stem + ".png"), frame.left);
+  write_png(join(folder_, "right/" + frame.stem + ".png"), frame.right);
+  write_pcd(join(folder_, "lidar/" + frame.stem + ".pcd"), frame.lidar, encoding);
+}
+
+void DatasetWriter::write_ground_truth(const Eigen::Isometry3d& T_lidar_camera) const {
+  write_transform(join(folder_, "ground_truth.yaml"), T_lidar_camera);
+}
+
+}  // namespace l2s::io
