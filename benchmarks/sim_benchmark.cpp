@@ -1,0 +1,77 @@
+// Simulator throughput: one lidar sweep, the clean stereo render (once per
+// dataset), per-frame image noise, and the board placement search.
+
+#include <l2s/sim/lidar_simulator.hpp>
+#include <l2s/sim/placement.hpp>
+#include <l2s/sim/settings.hpp>
+#include <l2s/sim/stereo_renderer.hpp>
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+using namespace l2s::sim;
+
+const Scene& bench_scene() {
+  static const Scene scene = make_scene(l2s::Target{}, BoardPose{3.0, 0.0, -0.1, 0.2, -0.06, 0.05});
+  return scene;
+}
+
+LidarModel model_for(int beams) {
+  return beams == 16 ? LidarModel::vlp16() : beams == 32 ? LidarModel::hdl32() : LidarModel::hdl64();
+}
+
+void BM_LidarSimulator_Sweep(benchmark::State& state) {
+  const RayCaster caster(bench_scene());
+  const LidarSimulator lidar(model_for(static_cast<int>(state.range(0))));
+  const Eigen::Isometry3d T = paper_setting(8).T_cambody_lidar();
+  std::uint64_t frame = 0;
+  std::size_t points = 0;
+  for (auto _ : state) {
+    const l2s::LidarCloud cloud = lidar.sweep(caster, T, frame++);
+    points = cloud.size();
+    benchmark::DoNotOptimize(cloud.points.data());
+  }
+  state.counters["points"] = static_cast<double>(points);
+}
+BENCHMARK(BM_LidarSimulator_Sweep)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+
+StereoRig rig_of_width(int width) {
+  StereoRig rig;
+  rig.width = width;
+  rig.height = width * 3 / 4;
+  return rig;
+}
+
+void BM_StereoRenderer_RenderPair(benchmark::State& state) {
+  const RayCaster caster(bench_scene());
+  const StereoRenderer renderer(rig_of_width(static_cast<int>(state.range(0))));
+  for (auto _ : state) {
+    const CleanStereo clean = renderer.render(caster);
+    benchmark::DoNotOptimize(clean.left.intensity.data());
+  }
+}
+BENCHMARK(BM_StereoRenderer_RenderPair)->Arg(640)->Arg(1280)->Unit(benchmark::kMillisecond);
+
+void BM_StereoRenderer_AddNoise(benchmark::State& state) {
+  const StereoRenderer renderer(rig_of_width(static_cast<int>(state.range(0))));
+  const CleanStereo clean = renderer.render(RayCaster(bench_scene()));
+  std::uint64_t frame = 0;
+  for (auto _ : state) {
+    const StereoImages images = renderer.add_noise(clean, 1.0, 1, frame++);
+    benchmark::DoNotOptimize(images.left.pixels.data());
+  }
+}
+BENCHMARK(BM_StereoRenderer_AddNoise)->Arg(1280)->Unit(benchmark::kMillisecond);
+
+void BM_FindPlacement_AllModels(benchmark::State& state) {
+  const std::vector<LidarModel> models{LidarModel::vlp16(), LidarModel::hdl32(), LidarModel::hdl64()};
+  const SensorSetting setting = paper_setting(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const PlacementResult result = find_placement(l2s::Target{}, setting, models);
+    benchmark::DoNotOptimize(result.score);
+  }
+}
+BENCHMARK(BM_FindPlacement_AllModels)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,96 @@
+#pragma once
+// The simulator's facade: from one flat SimulationConfig to a dataset folder
+// laid out as DATASET.md says (the paper's Gazebo test suite, Sec. IV-A).
+
+#include <l2s/sim/lidar_model.hpp>
+#include <l2s/sim/placement.hpp>
+#include <l2s/sim/scene.hpp>
+#include <l2s/sim/settings.hpp>
+#include <l2s/sim/stereo_renderer.hpp>
+#include <l2s/sim/stereo_rig.hpp>
+#include <l2s/camera.hpp>
+#include <l2s/target.hpp>
+#include <l2s/types.hpp>
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace l2s::sim {
+
+/// Everything that defines a synthetic dataset. Same config -> same bytes.
+struct SimulationConfig {
+  int setting_index = 1;         ///< 1..9 for Table I, 0 for a custom `setting`
+  SensorSetting setting = {-0.8, -0.1, 0.4, 0.0, 0.0, 0.0};  ///< lidar pose in camera body
+  std::string lidar = "vlp16";   ///< vlp16 | hdl32 | hdl64
+  int frames = 30;               ///< >= 1
+  double noise_factor = 1.0;     ///< K, >= 0: sigma = K * 0.008 m (lidar), K * 0.007 (image)
+  std::uint64_t seed = 1;        ///< S
+  Target target;                 ///< the board (Target::preset or target.yaml)
+  std::optional<BoardPose> board_pose;  ///< auto-placed (find_placement) when empty
+  StereoRig rig;                 ///< image size, fov, baseline
+  SceneLayout layout;            ///< wall, ground, clutter
+  bool strict_placement = true;  ///< throw when the placement check fails, else warn
+  int threads = 0;               ///< 0 = hardware concurrency
+
+  /// Table I setting `index` (1..9) with the given lidar model; throws ParamError.
+  static SimulationConfig paper(int index, const std::string& lidar = "vlp16");
+
+  /// Throws ParamError naming the field.
+  void validate() const;
+};
+
+/// One frame in memory, as the dataset folder will hold it.
+struct SimulatedFrame {
+  LidarCloud lidar;  ///< lidar frame, with ring and intensity
+  Image left;        ///< 8-bit gray
+  Image right;
+};
+
+/// Called after each frame is written: (frames done, frames total). Frames are
+/// written by several threads; calls are serialised and `done` counts up by one.
+using ProgressCallback = std::function<void(int done, int total)>;
+
+/// Builds the scene of a config once (placement, check, clean images) and then
+/// produces frames on demand. The expensive render happens in the constructor.
+class DatasetSimulator {
+ public:
+  /// Throws ParamError on a bad config, Error when strict_placement is set and
+  /// the placement check fails (the message says which hole/ring/image failed).
+  explicit DatasetSimulator(SimulationConfig config);
+  ~DatasetSimulator();
+  DatasetSimulator(DatasetSimulator&&) noexcept;
+  DatasetSimulator& operator=(DatasetSimulator&&) noexcept;
+
+  SimulatedFrame frame(int index) const;
+
+  /// Writes the whole dataset (cameras, target, frames, ground_truth.yaml and
+  /// scene.yaml with the setting and board pose) into `folder`.
+  void write(const std::string& folder, const ProgressCallback& progress = {}) const;
+
+  const SimulationConfig& config() const;
+  const Scene& scene() const;
+  const BoardPose& board_pose() const;
+  const LidarModel& lidar_model() const;
+  const PlacementReport& placement() const;   ///< for the configured lidar
+  const CleanStereo& clean_images() const;
+  StereoCamera cameras() const;
+  Eigen::Isometry3d T_lidar_camera() const;   ///< ground truth
+  std::vector<std::string> warnings() const;  ///< placement failures when not strict
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Writes the dataset of `config` into `out_dir` (DatasetSimulator::write).
+/// Returns the warnings (empty unless strict_placement is off and the check failed).
+std::vector<std::string> simulate_dataset(const SimulationConfig& config,
+                                          const std::string& out_dir,
+                                          const ProgressCallback& progress = {});
+
+}  // namespace l2s::sim

@@ -1,0 +1,84 @@
+#include <l2s/sim/ray_caster.hpp>
+
+#include "sim/board_geometry.hpp"
+
+#include <cmath>
+
+namespace l2s::sim {
+
+RayCaster::RayCaster(const Scene& scene)
+    : scene_(scene),
+      T_board_cambody_(scene.T_cambody_board.inverse()),
+      T_wall_cambody_(scene.wall.T_cambody_box.inverse()),
+      hole_centers_(scene.target.hole_centers()) {
+  for (const Box& box : scene_.clutter) T_clutter_cambody_.push_back(box.T_cambody_box.inverse());
+  const Target& b = scene_.target;
+  board_bound_radius_ =
+      0.5 * std::sqrt(b.board_width * b.board_width + b.board_height * b.board_height +
+                      4.0 * b.board_thickness * b.board_thickness) + 1e-6;
+}
+
+Hit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const {
+  Hit best;
+  detail::LocalHit local;
+
+  // Ground plane z = ground_z, seen from above only (sensors are above it).
+  if (direction.z() < 0.0 && origin.z() > scene_.ground_z) {
+    const double t = (scene_.ground_z - origin.z()) / direction.z();
+    best.t = t;
+    best.surface = SurfaceId::Ground;
+    best.part = 0;
+    best.normal = Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d p = origin + t * direction;
+    best.uv = Eigen::Vector2d(p.x(), p.y());
+  }
+
+  const auto take = [&](SurfaceId surface, const Eigen::Isometry3d& T_cambody_local) {
+    best.t = local.t;
+    best.surface = surface;
+    best.part = local.part;
+    best.normal = T_cambody_local.linear() * local.normal;
+    best.uv = local.uv;
+  };
+
+  {
+    const Eigen::Vector3d o = T_wall_cambody_ * origin;
+    const Eigen::Vector3d d = T_wall_cambody_.linear() * direction;
+    if (detail::intersect_box(Eigen::Vector3d::Zero(), scene_.wall.half_size, o, d, best.t, &local))
+      take(SurfaceId::Wall, scene_.wall.T_cambody_box);
+  }
+  for (std::size_t i = 0; i < scene_.clutter.size(); ++i) {
+    const Eigen::Vector3d o = T_clutter_cambody_[i] * origin;
+    const Eigen::Vector3d d = T_clutter_cambody_[i].linear() * direction;
+    if (detail::intersect_box(Eigen::Vector3d::Zero(), scene_.clutter[i].half_size, o, d, best.t,
+                              &local))
+      take(SurfaceId::Clutter, scene_.clutter[i].T_cambody_box);
+  }
+
+  // Board, after a cheap bounding-sphere rejection (most rays miss it).
+  const Eigen::Vector3d o = T_board_cambody_ * origin;
+  const Eigen::Vector3d d = T_board_cambody_.linear() * direction;
+  const Eigen::Vector3d oc = o - Eigen::Vector3d(0.0, 0.0, -0.5 * scene_.target.board_thickness);
+  const double along = oc.dot(d);
+  const double miss2 = oc.squaredNorm() - along * along;
+  if (miss2 <= board_bound_radius_ * board_bound_radius_ &&
+      detail::intersect_board(scene_.target, hole_centers_, o, d, best.t, &local))
+    take(SurfaceId::Board, scene_.T_cambody_board);
+  return best;
+}
+
+int RayCaster::hole_on_front_plane(const Eigen::Vector3d& origin,
+                                   const Eigen::Vector3d& direction) const {
+  const Eigen::Vector3d o = T_board_cambody_ * origin;
+  const Eigen::Vector3d d = T_board_cambody_.linear() * direction;
+  if (std::abs(d.z()) < 1e-12) return -1;
+  const double t = -o.z() / d.z();
+  if (t <= 0.0) return -1;
+  const Eigen::Vector2d p = (o + t * d).head<2>();
+  const double r2 = scene_.target.hole_radius * scene_.target.hole_radius;
+  for (int h = 0; h < 4; ++h)
+    if ((p - hole_centers_[static_cast<std::size_t>(h)]).squaredNorm() < r2) return h;
+  return -1;
+}
+
+}  // namespace l2s::sim

@@ -1,0 +1,180 @@
+// Scene files (scene_yaml.hpp): a SimulationConfig in YAML. Unknown keys are
+// errors, so a typo never silently falls back to a default.
+
+#include <l2s/sim/scene_yaml.hpp>
+
+#include <l2s/error.hpp>
+#include <l2s/sim/settings.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace l2s::sim {
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::string origin) : origin_(std::move(origin)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw FileError(origin_, "key '" + key + "': " + problem);
+  }
+
+  void only_keys(const YAML::Node& map, const std::string& where, const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(where, "must be a map");
+    for (const auto& item : map) {
+      const std::string key = item.first.as<std::string>();
+      if (!allowed.count(key)) fail(where.empty() ? key : where + "." + key, "unknown key");
+    }
+  }
+
+  template <class T>
+  void read(const YAML::Node& map, const char* key, const std::string& where, T* value) const {
+    const YAML::Node node = map[key];
+    if (!node) return;
+    try {
+      *value = node.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(where.empty() ? key : where + "." + key, "has the wrong type");
+    }
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsSequence() || node.size() != 3) fail(key, "must be a list of 3 numbers");
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) {
+      try {
+        v[i] = node[i].as<double>();
+      } catch (const YAML::Exception&) {
+        fail(key, "must be a list of 3 numbers");
+      }
+    }
+    return v;
+  }
+
+ private:
+  std::string origin_;
+};
+
+}  // namespace
+
+SimulationConfig parse_simulation_config(const std::string& yaml_text, const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw FileError(origin, std::string("malformed YAML: ") + e.what());
+  }
+  SimulationConfig config;
+  if (!root || root.IsNull()) return config;
+  const Reader r(origin);
+  r.only_keys(root, "", {"setting", "sensor_pose", "lidar", "frames", "noise_factor", "seed", "target",
+                         "board_pose", "camera", "scene", "strict_placement", "threads"});
+
+  if (root["setting"] && root["sensor_pose"]) r.fail("sensor_pose", "give either setting or sensor_pose");
+  if (root["setting"]) {
+    int index = 0;
+    r.read(root, "setting", "", &index);
+    if (index < 1 || index > 9) r.fail("setting", "must be 1..9 (Table I)");
+    config.setting_index = index;
+    config.setting = paper_setting(index);
+  }
+  if (const YAML::Node pose = root["sensor_pose"]) {
+    r.only_keys(pose, "sensor_pose", {"tx", "ty", "tz", "yaw", "pitch", "roll"});
+    config.setting_index = 0;
+    config.setting = SensorSetting{};
+    r.read(pose, "tx", "sensor_pose", &config.setting.tx);
+    r.read(pose, "ty", "sensor_pose", &config.setting.ty);
+    r.read(pose, "tz", "sensor_pose", &config.setting.tz);
+    r.read(pose, "yaw", "sensor_pose", &config.setting.yaw);
+    r.read(pose, "pitch", "sensor_pose", &config.setting.pitch);
+    r.read(pose, "roll", "sensor_pose", &config.setting.roll);
+  }
+  r.read(root, "lidar", "", &config.lidar);
+  r.read(root, "frames", "", &config.frames);
+  r.read(root, "noise_factor", "", &config.noise_factor);
+  r.read(root, "seed", "", &config.seed);
+  r.read(root, "strict_placement", "", &config.strict_placement);
+  r.read(root, "threads", "", &config.threads);
+
+  if (const YAML::Node target = root["target"]) {
+    if (target.IsScalar()) {
+      try {
+        config.target = Target::preset(target.as<std::string>());
+      } catch (const ParamError& e) {
+        r.fail("target", e.what());
+      }
+    } else {
+      r.only_keys(target, "target", {"board_width", "board_height", "board_thickness", "hole_radius",
+                                     "hole_spacing_x", "hole_spacing_y"});
+      r.read(target, "board_width", "target", &config.target.board_width);
+      r.read(target, "board_height", "target", &config.target.board_height);
+      r.read(target, "board_thickness", "target", &config.target.board_thickness);
+      r.read(target, "hole_radius", "target", &config.target.hole_radius);
+      r.read(target, "hole_spacing_x", "target", &config.target.hole_spacing_x);
+      r.read(target, "hole_spacing_y", "target", &config.target.hole_spacing_y);
+    }
+  }
+  if (const YAML::Node pose = root["board_pose"]) {
+    r.only_keys(pose, "board_pose", {"x", "y", "z", "yaw", "pitch", "roll"});
+    BoardPose board;
+    r.read(pose, "x", "board_pose", &board.x);
+    r.read(pose, "y", "board_pose", &board.y);
+    r.read(pose, "z", "board_pose", &board.z);
+    r.read(pose, "yaw", "board_pose", &board.yaw);
+    r.read(pose, "pitch", "board_pose", &board.pitch);
+    r.read(pose, "roll", "board_pose", &board.roll);
+    config.board_pose = board;
+  }
+  if (const YAML::Node camera = root["camera"]) {
+    r.only_keys(camera, "camera", {"width", "height", "horizontal_fov", "baseline"});
+    r.read(camera, "width", "camera", &config.rig.width);
+    r.read(camera, "height", "camera", &config.rig.height);
+    r.read(camera, "horizontal_fov", "camera", &config.rig.horizontal_fov);
+    r.read(camera, "baseline", "camera", &config.rig.baseline);
+  }
+  if (const YAML::Node scene = root["scene"]) {
+    r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top",
+                                 "default_clutter", "clutter"});
+    SceneLayout& layout = config.layout;
+    r.read(scene, "camera_height", "scene", &layout.camera_height);
+    r.read(scene, "wall_gap", "scene", &layout.wall_gap);
+    r.read(scene, "wall_half_width", "scene", &layout.wall_half_width);
+    r.read(scene, "wall_top", "scene", &layout.wall_top);
+    r.read(scene, "default_clutter", "scene", &layout.default_clutter);
+    if (const YAML::Node boxes = scene["clutter"]) {
+      if (!boxes.IsSequence()) r.fail("scene.clutter", "must be a list of boxes");
+      for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const std::string where = "scene.clutter[" + std::to_string(i) + "]";
+        r.only_keys(boxes[i], where, {"center", "size", "yaw"});
+        if (!boxes[i]["center"] || !boxes[i]["size"]) r.fail(where, "needs center and size");
+        double yaw = 0.0;
+        r.read(boxes[i], "yaw", where, &yaw);
+        Box box;
+        box.T_cambody_box.linear() = rotation_zyx(yaw, 0.0, 0.0);
+        box.T_cambody_box.translation() = r.vector3(boxes[i]["center"], where + ".center");
+        box.half_size = 0.5 * r.vector3(boxes[i]["size"], where + ".size");
+        layout.extra_clutter.push_back(box);
+      }
+    }
+  }
+  try {
+    config.validate();
+  } catch (const ParamError& e) {
+    throw FileError(origin, e.what());
+  }
+  return config;
+}
+
+SimulationConfig load_simulation_config(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_simulation_config(text.str(), path);
+}
+
+}  // namespace l2s::sim

@@ -1,0 +1,183 @@
+// The simulator facade: config -> scene (auto-placed board, checked) -> clean
+// stereo pair rendered once -> per frame: fresh image noise and a lidar sweep.
+
+#include <l2s/sim/simulation.hpp>
+
+#include <l2s/error.hpp>
+#include <l2s/io/dataset.hpp>
+#include <l2s/sim/lidar_simulator.hpp>
+#include <l2s/sim/ray_caster.hpp>
+
+#include "sim/parallel.hpp"
+#include "sim/random.hpp"
+#include "sim/scene_record.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+
+namespace l2s::sim {
+namespace {
+
+// Salts that give images and lidar independent random streams from one seed.
+constexpr std::uint64_t kImageStream = 0x1A6EULL;
+constexpr std::uint64_t kLidarStream = 0x71DAULL;
+
+std::string stem_of(int index) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%06d", index);
+  return buffer;
+}
+
+}  // namespace
+
+SimulationConfig SimulationConfig::paper(int index, const std::string& lidar) {
+  SimulationConfig config;
+  config.setting_index = index;
+  config.setting = paper_setting(index);
+  config.lidar = lidar;
+  LidarModel::by_name(lidar);  // reject unknown names here, not later
+  return config;
+}
+
+void SimulationConfig::validate() const {
+  if (setting_index < 0 || setting_index > 9)
+    throw ParamError("setting", "must be 1..9 (Table I) or 0 (custom pose)");
+  for (double v : {setting.tx, setting.ty, setting.tz, setting.yaw, setting.pitch, setting.roll})
+    if (!std::isfinite(v)) throw ParamError("sensor_pose", "must be finite");
+  LidarModel::by_name(lidar).validate();
+  if (frames < 1 || frames > 1000000) throw ParamError("frames", "must be 1..1000000");
+  if (!(noise_factor >= 0.0 && noise_factor <= 100.0)) throw ParamError("noise_factor", "must be 0..100");
+  if (threads < 0) throw ParamError("threads", "must be >= 0 (0 = all cores)");
+  target.validate();
+  rig.validate();
+}
+
+struct DatasetSimulator::Impl {
+  SimulationConfig config;
+  LidarModel model;
+  BoardPose pose;
+  Scene scene;
+  std::unique_ptr<RayCaster> caster;
+  PlacementReport placement;
+  std::vector<std::string> warnings;
+  std::unique_ptr<StereoRenderer> renderer;
+  std::unique_ptr<LidarSimulator> lidar;
+  CleanStereo clean;
+};
+
+DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_unique<Impl>()) {
+  config.validate();
+  Impl& s = *impl_;
+  s.config = std::move(config);
+  const SimulationConfig& c = s.config;
+  s.model = LidarModel::by_name(c.lidar);
+
+  if (c.board_pose) {
+    s.pose = *c.board_pose;
+  } else {
+    // One pose for all three models, so a setting's scene does not depend on
+    // the lidar; only if none exists, a pose for the configured model alone.
+    PlacementSearch search;
+    search.threads = c.threads;
+    PlacementResult found = find_placement(
+        c.target, c.setting, {LidarModel::vlp16(), LidarModel::hdl32(), LidarModel::hdl64()}, c.rig,
+        c.layout, search);
+    if (!found.found) found = find_placement(c.target, c.setting, {s.model}, c.rig, c.layout, search);
+    s.pose = found.pose;
+  }
+  s.scene = make_scene(c.target, s.pose, c.layout);
+  s.caster = std::make_unique<RayCaster>(s.scene);
+  s.placement = check_placement(s.scene, s.model, c.setting, c.rig);
+  if (!s.placement.ok) {
+    if (c.strict_placement)
+      throw Error("simulator: the board placement does not satisfy the calibrator's needs (" +
+                  std::string(c.board_pose ? "given" : "best found") + " pose)\n" +
+                  s.placement.summary());
+    s.warnings = s.placement.failures;
+  }
+
+  StereoRenderer::Params render_params;
+  render_params.threads = c.threads;
+  s.renderer = std::make_unique<StereoRenderer>(c.rig, render_params);
+  LidarSimulator::Params lidar_params;
+  lidar_params.noise_factor = c.noise_factor;
+  lidar_params.seed = detail::hash_counters(c.seed, kLidarStream);
+  lidar_params.threads = c.threads;
+  s.lidar = std::make_unique<LidarSimulator>(s.model, lidar_params);
+  s.clean = s.renderer->render(*s.caster);
+}
+
+DatasetSimulator::~DatasetSimulator() = default;
+DatasetSimulator::DatasetSimulator(DatasetSimulator&&) noexcept = default;
+DatasetSimulator& DatasetSimulator::operator=(DatasetSimulator&&) noexcept = default;
+
+SimulatedFrame DatasetSimulator::frame(int index) const {
+  if (index < 0) throw ParamError("frame", "index must be >= 0");
+  const Impl& s = *impl_;
+  const auto frame = static_cast<std::uint64_t>(index);
+  SimulatedFrame out;
+  out.lidar = s.lidar->sweep(*s.caster, s.config.setting.T_cambody_lidar(), frame);
+  StereoImages images = s.renderer->add_noise(
+      s.clean, s.config.noise_factor, detail::hash_counters(s.config.seed, kImageStream), frame);
+  out.left = std::move(images.left);
+  out.right = std::move(images.right);
+  return out;
+}
+
+void DatasetSimulator::write(const std::string& folder, const ProgressCallback& progress) const {
+  const Impl& s = *impl_;
+  const io::DatasetWriter writer(folder, cameras(), s.config.target);
+  writer.write_ground_truth(T_lidar_camera());
+  detail::write_scene_record(folder + "/scene.yaml", s.config, s.pose, s.scene, s.placement);
+  // Frames are independent (each draws its own noise), so workers take them
+  // in any order: PNG encoding dominates and would leave a core idle otherwise.
+  // Progress is reported in completion count order from under a lock.
+  std::mutex mutex;
+  int done = 0;
+  std::exception_ptr failure;
+  detail::parallel_for(s.config.frames, s.config.threads, [&](int i) {
+    try {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (failure) return;
+      }
+      SimulatedFrame simulated = frame(i);
+      io::Frame out;
+      out.stem = stem_of(i);
+      out.lidar = std::move(simulated.lidar);
+      out.left = std::move(simulated.left);
+      out.right = std::move(simulated.right);
+      writer.write(out);
+      std::lock_guard<std::mutex> lock(mutex);
+      ++done;
+      if (progress) progress(done, s.config.frames);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  }, 1);
+  if (failure) std::rethrow_exception(failure);
+}
+
+const SimulationConfig& DatasetSimulator::config() const { return impl_->config; }
+const Scene& DatasetSimulator::scene() const { return impl_->scene; }
+const BoardPose& DatasetSimulator::board_pose() const { return impl_->pose; }
+const LidarModel& DatasetSimulator::lidar_model() const { return impl_->model; }
+const PlacementReport& DatasetSimulator::placement() const { return impl_->placement; }
+const CleanStereo& DatasetSimulator::clean_images() const { return impl_->clean; }
+StereoCamera DatasetSimulator::cameras() const { return impl_->config.rig.cameras(); }
+Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const {
+  return impl_->config.setting.T_lidar_camera();
+}
+std::vector<std::string> DatasetSimulator::warnings() const { return impl_->warnings; }
+
+std::vector<std::string> simulate_dataset(const SimulationConfig& config, const std::string& out_dir,
+                                          const ProgressCallback& progress) {
+  const DatasetSimulator simulator(config);
+  simulator.write(out_dir, progress);
+  return simulator.warnings();
+}
+
+}  // namespace l2s::sim
