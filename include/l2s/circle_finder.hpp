@@ -1,0 +1,66 @@
+#pragma once
+// The four hole centres from edge points on the board plane (paper Sec. III-C:
+// circles of known radius by sample consensus in the plane, checked against the
+// known hole spacing), optionally refined as one rigid pattern with the board's
+// thickness modelled.
+
+#include <l2s/geometry.hpp>
+#include <l2s/target.hpp>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace l2s {
+
+/// Finds and labels the four holes of the board among edge points.
+class CircleFinder {
+ public:
+  struct Params {
+    double inlier_threshold = 0.02;   ///< [m] | |q - c| - r | for a point to support a circle, > 0
+    int min_circle_points = 3;        ///< fewest points on a circle candidate (paper: 3), >= 2
+    int max_iterations = 2000;        ///< point pairs tried; every pair when there are fewer, >= 1
+    int max_candidates = 16;          ///< circle candidates kept (best first), >= 4
+    double spacing_tolerance = 0.03;  ///< [m] max distance of a centre from the fitted rigid pattern, > 0
+    bool project_along_rays = true;   ///< move points onto the plane along their viewing ray (false: orthogonally, paper)
+    bool joint_fit = true;            ///< refine the four holes as one rigid pattern (false: independent circles, paper)
+    bool model_thickness = true;      ///< fit the aperture a ray sees through a thick board (false: thin board, paper)
+    int max_refine_iterations = 30;   ///< Gauss-Newton iterations of each fit, >= 1
+    std::uint64_t seed = 7;           ///< random pairs when there are too many to try them all
+
+    void validate() const;  ///< throws ParamError naming the field
+    static Params paper();  ///< independent circles, orthogonal projection, thin board
+  };
+
+  struct Result {
+    bool found = false;
+    std::string reason;                   ///< why the frame was rejected; empty on success
+    HoleCenters centers;                  ///< [m] sensor frame, on the plane, indexed by enum Hole
+    std::vector<Circle> candidates;       ///< every circle candidate, best first (sensor frame)
+    std::vector<std::size_t> candidate_points;  ///< supporting points of each candidate
+    std::array<int, 4> matched{{-1, -1, -1, -1}};  ///< candidate index of each hole
+    double pattern_angle = 0.0;           ///< [rad] in-plane roll of the hole pattern (0 = upright)
+    double rms = 0.0;                     ///< [m] rms residual of the final fit
+    std::size_t fit_points = 0;           ///< points used in the final fit
+  };
+
+  // Two constructors rather than `Params params = {}`: a nested struct's default
+  // member initialisers are not usable in a default argument of its enclosing class.
+  CircleFinder();
+  explicit CircleFinder(Params params);
+
+  /// `edges`: edge points in the sensor frame, whose origin is the sensor (each
+  /// point's viewing ray is its direction); `plane`: the board plane (either
+  /// normal sign); `up`: the sensor's up axis (lidar +z, camera optical -y).
+  Result find(const std::vector<Eigen::Vector3d>& edges, const Plane& plane, const Eigen::Vector3d& up,
+              const Target& target = Target{}) const;
+  const Params& params() const { return params_; }
+
+ private:
+  Params params_;
+};
+
+}  // namespace l2s

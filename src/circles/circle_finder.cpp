@@ -1,0 +1,141 @@
+// Circle segmentation, paper Sec. III-C: edge points are brought into the
+// board plane, circles of the known radius are found by sample consensus, and
+// the known hole spacing selects the four that are the holes.
+//
+// Beyond the paper (Params::paper() switches it off): points are moved onto
+// the plane along their own viewing ray, which removes range noise instead of
+// keeping its in-plane part; the four holes are refit as one rigid pattern (3
+// parameters from every edge point instead of 2 per hole from a few); and the
+// board's thickness is modelled: seen obliquely, a hole's visible aperture is
+// the intersection of its front and back rims (see circles/circle_fit.hpp).
+#include <l2s/circle_finder.hpp>
+
+#include <l2s/error.hpp>
+
+#include "circles/circle_fit.hpp"
+#include "circles/hole_pattern.hpp"
+#include "plane/plane_fit.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace l2s {
+
+void CircleFinder::Params::validate() const {
+  if (!(inlier_threshold > 0.0)) throw ParamError("inlier_threshold", "must be > 0 m");
+  if (min_circle_points < 2) throw ParamError("min_circle_points", "must be >= 2");
+  if (max_iterations < 1) throw ParamError("max_iterations", "must be >= 1");
+  if (max_candidates < 4) throw ParamError("max_candidates", "must be >= 4");
+  if (!(spacing_tolerance > 0.0)) throw ParamError("spacing_tolerance", "must be > 0 m");
+  if (max_refine_iterations < 1) throw ParamError("max_refine_iterations", "must be >= 1");
+}
+
+CircleFinder::Params CircleFinder::Params::paper() {
+  Params params;
+  params.project_along_rays = false;
+  params.joint_fit = false;
+  params.model_thickness = false;
+  return params;
+}
+
+CircleFinder::CircleFinder() : CircleFinder(Params{}) {}
+
+CircleFinder::CircleFinder(Params params) : params_(std::move(params)) { params_.validate(); }
+
+CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edges, const Plane& plane_in,
+                                        const Eigen::Vector3d& up, const Target& target) const {
+  target.validate();
+  if (!up.allFinite() || up.norm() < 1e-9) throw ParamError("up", "must be a finite non-zero vector");
+  if (!plane_in.coeffs().allFinite()) throw Error("CircleFinder: the plane is not finite");
+  Result result;
+  const Plane plane = detail::facing_origin(plane_in);
+  const detail::PlaneAxes axes = detail::plane_axes(plane.normal(), up);
+  const Eigen::Vector3d origin = -plane.offset() * plane.normal();
+  const double radius = target.hole_radius;
+
+  // Edge points in the plane frame (x right, y up, z towards the sensor).
+  std::vector<detail::EdgePoint2> points;
+  points.reserve(edges.size());
+  for (const Eigen::Vector3d& q : edges) {
+    if (!q.allFinite() || q.norm() < 1e-9) continue;
+    const Eigen::Vector3d ray = q.normalized();
+    const double ray_normal = ray.dot(plane.normal());  // < 0: the ray goes away from the sensor side
+    Eigen::Vector3d on_plane = q - plane.signedDistance(q) * plane.normal();
+    if (params_.project_along_rays && ray_normal < -1e-6) on_plane = ray * (-plane.offset() / ray_normal);
+    detail::EdgePoint2 p;
+    p.q = Eigen::Vector2d((on_plane - origin).dot(axes.right), (on_plane - origin).dot(axes.up));
+    if (params_.model_thickness && ray_normal < -1e-6) {
+      const Eigen::Vector2d ray_inplane(ray.dot(axes.right), ray.dot(axes.up));
+      p.shift = -target.board_thickness * ray_inplane / ray_normal;
+    }
+    points.push_back(p);
+  }
+  const auto to_sensor = [&](const Eigen::Vector2d& c) -> Eigen::Vector3d {
+    return origin + c.x() * axes.right + c.y() * axes.up;
+  };
+
+  detail::CandidateSearch search;
+  search.radius = radius;
+  search.inlier_threshold = params_.inlier_threshold;
+  search.min_points = static_cast<std::size_t>(params_.min_circle_points);
+  search.max_iterations = params_.max_iterations;
+  search.max_candidates = static_cast<std::size_t>(params_.max_candidates);
+  // Two candidates both within tolerance of one hole would make every frame ambiguous.
+  search.separation = std::max(0.5 * radius, 2.0 * params_.spacing_tolerance);
+  std::mt19937_64 rng(params_.seed);
+  const std::vector<detail::CircleCandidate2> candidates = detail::find_circle_candidates(points, search, rng);
+  std::vector<Eigen::Vector2d> candidate_centers;
+  for (const detail::CircleCandidate2& c : candidates) {
+    candidate_centers.push_back(c.center);
+    result.candidates.push_back(Circle{to_sensor(c.center), plane.normal(), radius});
+    result.candidate_points.push_back(c.inliers.size());
+  }
+
+  const std::array<Eigen::Vector2d, 4> holes = target.hole_centers();
+  const detail::PatternMatch match = detail::match_hole_pattern(candidate_centers, holes, params_.spacing_tolerance);
+  if (!match.found) {
+    result.reason = match.reason + " (" + std::to_string(points.size()) + " edge points)";
+    return result;
+  }
+  result.matched = match.candidate_of_hole;
+
+  std::array<Eigen::Vector2d, 4> centers2;
+  if (params_.joint_fit) {
+    // Every point within the threshold of a hole's aperture joins the fit,
+    // including points the candidate search left to no circle.
+    detail::PatternPose pose{match.offset, match.angle};
+    std::vector<int> hole_of(points.size(), -1);
+    for (int pass = 0; pass < 2; ++pass) {
+      result.fit_points = 0;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        hole_of[i] = -1;
+        double best = params_.inlier_threshold;
+        for (int h = 0; h < 4; ++h) {
+          const double e = std::abs(detail::aperture_residual(points[i], pose.center(holes[h]), radius));
+          if (e <= best) best = e, hole_of[i] = h;
+        }
+        if (hole_of[i] >= 0) ++result.fit_points;
+      }
+      result.rms = detail::refine_pattern(points, hole_of, holes, radius, params_.max_refine_iterations, pose);
+    }
+    for (int h = 0; h < 4; ++h) centers2[h] = pose.center(holes[h]);
+    result.pattern_angle = pose.angle;
+  } else {
+    double sum_sq = 0.0;
+    result.fit_points = 0;
+    for (int h = 0; h < 4; ++h) {
+      const detail::CircleCandidate2& c = candidates[match.candidate_of_hole[h]];
+      centers2[h] = c.center;
+      const double rms = detail::refine_circle(points, c.inliers, radius, params_.max_refine_iterations, centers2[h]);
+      sum_sq += rms * rms * static_cast<double>(c.inliers.size());
+      result.fit_points += c.inliers.size();
+    }
+    result.rms = result.fit_points ? std::sqrt(sum_sq / static_cast<double>(result.fit_points)) : 0.0;
+    result.pattern_angle = match.angle;
+  }
+  for (int h = 0; h < 4; ++h) result.centers[h] = to_sensor(centers2[h]);
+  result.found = true;
+  return result;
+}
+
+}  // namespace l2s

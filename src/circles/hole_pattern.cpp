@@ -1,0 +1,95 @@
+// The known hole spacing as a constraint (paper Sec. III-C: "the distance
+// between the circle centers in the physical calibration target is also taken
+// into account") and the labels TL/TR/BL/BR (Sec. III-D).
+//
+// Labels come from the board's own geometry, not from azimuths: in the plane
+// frame (x right, y = sensor up projected into the plane, z towards the
+// sensor) the pattern is fitted by a proper 2D rotation for every assignment
+// of candidates to holes, and the assignment whose rotation is nearest to
+// upright wins. A rectangle admits 0 and 180 degrees (up decides); a square
+// admits four rotations (up alone decides). A board seen from behind or beside
+// the sensor is labelled as the sensor sees it.
+#include "circles/hole_pattern.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace l2s::detail {
+namespace {
+
+struct Fit {
+  double angle;
+  Eigen::Vector2d offset;
+  double max_error;
+};
+
+/// Rigid 2D fit of holes[h] -> points[h] (Procrustes, rotation only).
+Fit rigid_fit(const std::array<Eigen::Vector2d, 4>& holes, const std::array<Eigen::Vector2d, 4>& points) {
+  Eigen::Vector2d hole_mean = Eigen::Vector2d::Zero(), point_mean = Eigen::Vector2d::Zero();
+  for (int h = 0; h < 4; ++h) hole_mean += holes[h] / 4.0, point_mean += points[h] / 4.0;
+  double s_cos = 0.0, s_sin = 0.0;
+  for (int h = 0; h < 4; ++h) {
+    const Eigen::Vector2d a = holes[h] - hole_mean, b = points[h] - point_mean;
+    s_cos += a.dot(b);
+    s_sin += a.x() * b.y() - a.y() * b.x();
+  }
+  Fit fit{std::atan2(s_sin, s_cos), Eigen::Vector2d::Zero(), 0.0};
+  const Eigen::Rotation2Dd R(fit.angle);
+  fit.offset = point_mean - R * hole_mean;
+  for (int h = 0; h < 4; ++h) fit.max_error = std::max(fit.max_error, (R * holes[h] + fit.offset - points[h]).norm());
+  return fit;
+}
+
+}  // namespace
+
+PatternMatch match_hole_pattern(const std::vector<Eigen::Vector2d>& centers,
+                                const std::array<Eigen::Vector2d, 4>& holes, double tolerance) {
+  PatternMatch match;
+  const int n = static_cast<int>(centers.size());
+  if (n < 4) {
+    match.reason = "only " + std::to_string(n) + " circle candidate(s), 4 holes needed";
+    return match;
+  }
+  int matching_sets = 0;
+  double best_miss = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c)
+        for (int d = c + 1; d < n; ++d) {
+          std::array<int, 4> perm{{a, b, c, d}};  // sorted: next_permutation visits all 24
+          bool set_matches = false;
+          do {
+            const std::array<Eigen::Vector2d, 4> points{
+                {centers[perm[0]], centers[perm[1]], centers[perm[2]], centers[perm[3]]}};
+            const Fit fit = rigid_fit(holes, points);
+            best_miss = std::min(best_miss, fit.max_error);
+            if (fit.max_error > tolerance) continue;
+            if (!set_matches || std::abs(fit.angle) < std::abs(match.angle)) {
+              if (!set_matches) ++matching_sets;
+              set_matches = true;
+              match.candidate_of_hole = perm;
+              match.angle = fit.angle;
+              match.offset = fit.offset;
+            }
+          } while (std::next_permutation(perm.begin(), perm.end()));
+          if (matching_sets > 1) {
+            match.reason = "more than one set of four circle candidates fits the hole pattern (ambiguous)";
+            match.candidate_of_hole = {{-1, -1, -1, -1}};
+            return match;
+          }
+        }
+  if (matching_sets == 0) {
+    std::ostringstream reason;
+    reason << "no four of the " << n << " circle candidates form the hole pattern (closest set misses by "
+           << best_miss << " m, tolerance " << tolerance << " m)";
+    match.reason = reason.str();
+    return match;
+  }
+  match.found = true;
+  return match;
+}
+
+}  // namespace l2s::detail

@@ -1,0 +1,171 @@
+// Connected patches on a plane, for telling the board from larger coplanar
+// surfaces (a wall behind it) or scattered junk. The cells are anisotropic:
+// a lidar samples the board densely along a ring but only at ring heights.
+#include "plane/board_patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+namespace l2s::detail {
+namespace {
+
+constexpr int kDirections = 90;   // 1-degree steps for the smallest enclosing rectangle
+constexpr double kBin = 0.05;      // [m] resolution of the board-window search
+constexpr int kMaxBins = 400;      // larger patches are walls: no window search
+
+/// The window position holding most points (summed-area table on kBin bins).
+Eigen::AlignedBox2d best_window(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& size,
+                                std::size_t* count) {
+  Eigen::AlignedBox2d bounds;
+  for (const auto& q : uv) bounds.extend(q);
+  const Eigen::Vector2i bins = ((bounds.sizes() / kBin).array().floor().cast<int>() + 1).matrix();
+  *count = 0;
+  if (bins.x() > kMaxBins || bins.y() > kMaxBins) return bounds;
+  std::vector<std::size_t> table((bins.x() + 1) * (bins.y() + 1), 0);
+  const auto at = [&](int i, int j) -> std::size_t& { return table[j * (bins.x() + 1) + i]; };
+  for (const auto& q : uv) {
+    const Eigen::Vector2i b = ((q - bounds.min()) / kBin).array().floor().cast<int>();
+    ++at(b.x() + 1, b.y() + 1);
+  }
+  for (int j = 1; j <= bins.y(); ++j)
+    for (int i = 1; i <= bins.x(); ++i) at(i, j) += at(i - 1, j) + at(i, j - 1) - at(i - 1, j - 1);
+  const int wu = std::min(bins.x(), static_cast<int>(std::ceil(size.x() / kBin)));
+  const int wv = std::min(bins.y(), static_cast<int>(std::ceil(size.y() / kBin)));
+  Eigen::Vector2i best(0, 0);
+  for (int j = 0; j + wv <= bins.y(); ++j)
+    for (int i = 0; i + wu <= bins.x(); ++i) {
+      const std::size_t n = at(i + wu, j + wv) - at(i, j + wv) - at(i + wu, j) + at(i, j);
+      if (n > *count) *count = n, best = Eigen::Vector2i(i, j);
+    }
+  const Eigen::Vector2d lo = bounds.min() + kBin * best.cast<double>();
+  return Eigen::AlignedBox2d(lo, lo + kBin * Eigen::Vector2d(wu, wv));
+}
+
+std::uint64_t pack(std::int64_t u, std::int64_t v) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) |
+         static_cast<std::uint32_t>(v);
+}
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+PlaneGrid::PlaneGrid(const Plane& plane, const Eigen::Vector3d& axis, double gap_u, double gap_v)
+    : axes_(plane_axes(plane.normal(), axis)),
+      origin_(-plane.offset() * plane.normal()),
+      inv_u_(1.0 / gap_u),
+      inv_v_(1.0 / gap_v) {}
+
+Eigen::Vector2d PlaneGrid::to_plane(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d q = p - origin_;
+  return {q.dot(axes_.right), q.dot(axes_.up)};
+}
+
+std::uint64_t PlaneGrid::cell(const Eigen::Vector2d& uv) const {
+  return pack(static_cast<std::int64_t>(std::floor(uv.x() * inv_u_)),
+              static_cast<std::int64_t>(std::floor(uv.y() * inv_v_)));
+}
+
+std::uint64_t PlaneGrid::neighbour(std::uint64_t cell, int du, int dv) const {
+  const auto u = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell >> 32));
+  const auto v = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell & 0xFFFFFFFFu));
+  return pack(static_cast<std::int64_t>(u) + du, static_cast<std::int64_t>(v) + dv);
+}
+
+bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector3d& p) {
+  const Eigen::Vector2d uv = grid.to_plane(p);
+  return patch.box.contains(uv) && patch.cells.count(grid.cell(uv)) > 0;
+}
+
+Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points,
+                    const Eigen::Vector2d& window, double window_share) {
+  Patch patch;
+  if (points.empty()) return patch;
+  std::vector<Eigen::Vector2d> uv(points.size());
+  std::vector<int> cell_of_point(points.size());
+  std::unordered_map<std::uint64_t, int> cell_id;
+  std::vector<std::uint64_t> cell_keys;
+  std::vector<int> cell_count;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    uv[i] = grid.to_plane(points[i]);
+    const std::uint64_t key = grid.cell(uv[i]);
+    const auto [it, inserted] = cell_id.emplace(key, static_cast<int>(cell_keys.size()));
+    if (inserted) {
+      cell_keys.push_back(key);
+      cell_count.push_back(0);
+    }
+    cell_of_point[i] = it->second;
+    ++cell_count[it->second];
+  }
+
+  std::vector<int> parent(cell_keys.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (std::size_t c = 0; c < cell_keys.size(); ++c)
+    for (int du = -1; du <= 1; ++du)
+      for (int dv = -1; dv <= 1; ++dv) {
+        const auto it = cell_id.find(grid.neighbour(cell_keys[c], du, dv));
+        if (it == cell_id.end()) continue;
+        const int a = find_root(parent, static_cast<int>(c));
+        const int b = find_root(parent, it->second);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smaller id wins: deterministic
+      }
+
+  std::vector<std::size_t> component_points(cell_keys.size(), 0);
+  for (std::size_t c = 0; c < cell_keys.size(); ++c)
+    component_points[find_root(parent, static_cast<int>(c))] += cell_count[c];
+  const int best = static_cast<int>(std::max_element(component_points.begin(), component_points.end()) -
+                                    component_points.begin());
+  for (std::size_t c = 0; c < cell_keys.size(); ++c)
+    if (find_root(parent, static_cast<int>(c)) == best) patch.cells.insert(cell_keys[c]);
+  patch.points = component_points[best];
+
+  std::vector<Eigen::Vector2d> members;
+  members.reserve(patch.points);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (find_root(parent, cell_of_point[i]) == best) members.push_back(uv[i]);
+  std::size_t in_window = 0;
+  const Eigen::AlignedBox2d box = best_window(members, window, &in_window);
+  patch.box = Eigen::AlignedBox2d();
+  for (const auto& q : members) patch.box.extend(q);
+  if (static_cast<double>(in_window) >= window_share * static_cast<double>(members.size())) {
+    // Cut to the window, then shrink to the points inside it.
+    std::vector<Eigen::Vector2d> inside;
+    patch.box = Eigen::AlignedBox2d();
+    for (const auto& q : members)
+      if (box.contains(q)) inside.push_back(q), patch.box.extend(q);
+    members.swap(inside);
+    patch.points = members.size();
+  }
+  patch.box.extend(patch.box.min() - Eigen::Vector2d::Constant(kBin));  // margin: subsampling misses extremes
+  patch.box.extend(patch.box.max() + Eigen::Vector2d::Constant(kBin));
+  // Smallest-area enclosing rectangle over 1-degree steps: robust to a rolled board.
+  double best_area = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < kDirections; ++k) {
+    const double angle = M_PI / 2.0 * k / kDirections;
+    const Eigen::Vector2d a(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d b(-a.y(), a.x());
+    double min_a = std::numeric_limits<double>::infinity(), max_a = -min_a, min_b = min_a, max_b = -min_a;
+    for (const Eigen::Vector2d& q : members) {
+      const double pa = q.dot(a), pb = q.dot(b);
+      min_a = std::min(min_a, pa);
+      max_a = std::max(max_a, pa);
+      min_b = std::min(min_b, pb);
+      max_b = std::max(max_b, pb);
+    }
+    const double wa = max_a - min_a, wb = max_b - min_b;
+    if (wa * wb < best_area) {
+      best_area = wa * wb;
+      patch.extent_long = std::max(wa, wb);
+      patch.extent_short = std::min(wa, wb);
+    }
+  }
+  return patch;
+}
+
+}  // namespace l2s::detail
