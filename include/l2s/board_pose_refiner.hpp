@@ -1,0 +1,66 @@
+#pragma once
+// Sub-pixel refinement of the board pose from the hole rims in both images.
+// Aligns the projected silhouettes of the four apertures (front and back rim
+// circles of each hole) with the image edges by robust Gauss-Newton.
+
+#include <l2s/camera.hpp>
+#include <l2s/geometry.hpp>
+#include <l2s/target.hpp>
+#include <l2s/types.hpp>
+
+#include <Eigen/Geometry>
+#include <string>
+
+namespace l2s {
+
+class BoardPoseRefiner {
+ public:
+  struct Params {
+    int samples_per_rim = 360;     ///< points on each rim circle (front and back); ~1 per px of rim at 3 m, 16..2000
+    double search_range_px = 6.0;  ///< [px] first round's edge search along the rim normal, +-, 1..30
+    double final_search_range_px = 2.0;  ///< [px] the range halves each round down to this, so a nearby parallel edge (e.g. the other rim) cannot capture samples once aligned, 1..search_range_px
+    double search_step_px = 0.5;   ///< [px] spacing of the gradient samples on the search line, 0.1..2
+    double min_rim_separation_px = 3.0;  ///< [px] back-rim samples closer than this to the front rim's projection are dropped: the two edges (hole wall between) blend and bias the peak, 0..10
+    double min_edge_strength = 6.0;  ///< [gray levels / px] weakest gradient accepted as the rim, >= 0
+    double huber_px = 0.5;         ///< [px] Huber threshold of the robust weights, > 0
+    int max_iterations = 12;       ///< search-and-fit rounds, >= 1
+    int gauss_newton_steps = 3;    ///< Gauss-Newton steps per round (edges fixed), >= 1
+    double image_margin_px = 4.0;  ///< [px] samples closer than this to the border are skipped, >= 0
+    double converged_rotation = 2e-5;     ///< [rad] a round moving less than this ...
+    double converged_translation = 2e-5;  ///< [m] ... and this has converged
+    bool use_right_image = true;   ///< also fit the right image (needed for depth)
+    int min_samples = 40;          ///< fewer edge samples than this fails, >= 7
+    double max_rms_px = 1.0;       ///< [px] converged only if the final rms is below this, > 0
+
+    /// Throws ParamError naming the first invalid field.
+    void validate() const;
+  };
+
+  struct Result {
+    bool converged = false;   ///< refinement converged with enough samples and small rms
+    std::string reason;       ///< why not, when !converged
+    Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  ///< refined pose (left optical frame)
+    HoleCenters centers{};    ///< [m] hole centres on the front face, left optical frame, enum Hole order
+    double rms_px = 0.0;      ///< [px] rms normal distance of the used samples, last round
+    int samples = 0;          ///< edge samples used in the last round (both images)
+    int iterations = 0;       ///< search-and-fit rounds run
+  };
+
+  // `Stage(Params = {})` does not compile with GCC while Params has default
+  // member initializers (they are parsed only once the outer class is complete).
+  BoardPoseRefiner() : BoardPoseRefiner(Params{}) {}
+  /// Throws ParamError naming the field when `params` is invalid.
+  explicit BoardPoseRefiner(Params params);
+  const Params& params() const { return params_; }
+
+  /// `left`, `right`: rectified 8-bit images (gray or BGR); `T_camera_board`:
+  /// initial pose, board frame as in target.hpp. Throws ParamError for an
+  /// invalid target or images that disagree with the cameras.
+  Result refine(const Image& left, const Image& right, const StereoCamera& camera,
+                const Target& target, const Eigen::Isometry3d& T_camera_board) const;
+
+ private:
+  Params params_;
+};
+
+}  // namespace l2s

@@ -1,0 +1,91 @@
+#pragma once
+// Stereo matching: a rectified pair to a disparity map and a stereo cloud
+// (paper Sec. III-A, Semi-Global Matching after Hirschmuller 2008).
+
+#include <l2s/camera.hpp>
+#include <l2s/geometry.hpp>
+#include <l2s/types.hpp>
+
+#include <string>
+#include <vector>
+
+namespace l2s {
+
+/// A rectangle of pixels; a zero width or height means "the whole image".
+struct PixelRect {
+  int x = 0;       ///< [px] first column
+  int y = 0;       ///< [px] first row
+  int width = 0;   ///< [px]
+  int height = 0;  ///< [px]
+  bool empty() const { return width <= 0 || height <= 0; }
+};
+
+/// Disparity of the left image, kept for diagnostics. Cell (i, j) covers the
+/// left pixel (x0 + (i + 0.5) / scale - 0.5, y0 + (j + 0.5) / scale - 0.5).
+struct DisparityMap {
+  int width = 0;        ///< [cells]
+  int height = 0;       ///< [cells]
+  int x0 = 0;           ///< [px] left-image column of the first cell
+  int y0 = 0;           ///< [px] left-image row of the first cell
+  double scale = 1.0;   ///< cells per left-image pixel (1 = full resolution)
+  std::vector<float> values;  ///< [px] full-resolution disparity, row-major; NaN = no match
+
+  float at(int i, int j) const { return values[static_cast<std::size_t>(j) * width + i]; }
+  bool empty() const { return values.empty(); }
+};
+
+/// Semi-Global Matching (cv::StereoSGBM) on a rectified pair, then
+/// triangulation Z = fx * B / d into the left optical frame.
+class StereoMatcher {
+ public:
+  /// Cost aggregation paths of SGBM: 5 (single pass), 8 (two passes, slow),
+  /// 8 in three passes (fast, parallel), 4 paths (HH4).
+  enum class Mode { Sgbm5, Hh8, Sgbm3Way, Hh4 };
+
+  struct Params {
+    int min_disparity = 32;    ///< [px] smallest disparity searched (full resolution); 32 px = 6.1 m at fx 1626, B 0.12
+    int num_disparities = 96;  ///< [px] search range (full resolution), > 0, rounded up to 16 after scaling; 32..128 = 6.1..1.5 m
+    int block_size = 5;        ///< [px] odd matching window, 1..11
+    int p1 = 0;                ///< smoothness penalty for +-1 px disparity steps; 0 = 8 * block_size^2
+    int p2 = 0;                ///< penalty for larger disparity steps, > p1; 0 = 32 * block_size^2
+    int disp12_max_diff = 1;   ///< [px] left-right consistency tolerance; < 0 disables
+    int pre_filter_cap = 63;   ///< clamp of the x-derivative prefilter, 1..63
+    int uniqueness_ratio = 10; ///< [%] best cost must beat the second best by this margin, 0..100
+    int speckle_window_size = 100;  ///< [px] largest speckle region removed; 0 disables
+    int speckle_range = 2;     ///< [px] disparity variation inside a connected region, >= 0
+    Mode mode = Mode::Sgbm3Way;  ///< aggregation variant; Sgbm3Way is the fastest
+    double downscale = 1.0;    ///< processing scale, (0, 1]; 0.5 matches at half resolution (~6x faster)
+    PixelRect roi;             ///< [px] part of the left image to match; empty = all
+    double min_depth = 0.5;    ///< [m] points closer than this are dropped, > 0
+    double max_depth = 10.0;   ///< [m] points farther than this are dropped, > min_depth
+    int stride = 1;            ///< [cells] keep every stride-th cell in x and y of the cloud, >= 1
+
+    /// Throws ParamError naming the first invalid field.
+    void validate() const;
+  };
+
+  struct Result {
+    bool found = false;        ///< a cloud with at least one point was produced
+    std::string reason;        ///< why not, when !found
+    DisparityMap disparity;    ///< the raw disparity, for diagnostics
+    StereoCloud cloud;         ///< [m] left optical frame, each point with its left pixel
+    double match_ms = 0.0;     ///< [ms] time spent inside SGBM
+    double total_ms = 0.0;     ///< [ms] whole call
+  };
+
+  // `Stage(Params = {})` does not compile with GCC while Params has default
+  // member initializers (they are parsed only once the outer class is complete).
+  StereoMatcher() : StereoMatcher(Params{}) {}
+  /// Throws ParamError naming the field when `params` is invalid.
+  explicit StereoMatcher(Params params);
+  const Params& params() const { return params_; }
+
+  /// Matches a rectified pair (8-bit gray or BGR, same size as the cameras).
+  /// Throws ParamError when the images and cameras disagree in size.
+  Result match(const Image& left, const Image& right, const StereoCamera& camera) const;
+
+ private:
+  Params params_;
+};
+
+}  // namespace l2s

@@ -1,0 +1,156 @@
+// Stereo matching (paper Sec. III-A): Semi-Global Matching (Hirschmuller
+// 2008) through cv::StereoSGBM, then triangulation in the left optical frame.
+// Cost is proportional to pixels x disparities, so the search range should be
+// the pass-through depth range and nothing more; `downscale` and `roi` trade
+// resolution and field of view for speed.
+
+#include <l2s/stereo_matcher.hpp>
+
+#include "camera/cv_image.hpp"
+
+#include <opencv2/calib3d.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace l2s {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int sgbm_mode(StereoMatcher::Mode mode) {
+  switch (mode) {
+    case StereoMatcher::Mode::Sgbm5: return cv::StereoSGBM::MODE_SGBM;
+    case StereoMatcher::Mode::Hh8: return cv::StereoSGBM::MODE_HH;
+    case StereoMatcher::Mode::Sgbm3Way: return cv::StereoSGBM::MODE_SGBM_3WAY;
+    case StereoMatcher::Mode::Hh4: return cv::StereoSGBM::MODE_HH4;
+  }
+  return cv::StereoSGBM::MODE_SGBM_3WAY;
+}
+
+}  // namespace
+
+void StereoMatcher::Params::validate() const {
+  if (num_disparities <= 0) throw ParamError("num_disparities", "must be > 0");
+  if (min_disparity < 0) throw ParamError("min_disparity", "must be >= 0");
+  if (block_size < 1 || block_size > 11 || block_size % 2 == 0)
+    throw ParamError("block_size", "must be odd, 1..11");
+  if (p1 < 0) throw ParamError("p1", "must be >= 0 (0 = automatic)");
+  if (p2 < 0 || (p2 > 0 && p2 <= p1)) throw ParamError("p2", "must be > p1 (0 = automatic)");
+  if (pre_filter_cap < 1 || pre_filter_cap > 63) throw ParamError("pre_filter_cap", "must be 1..63");
+  if (uniqueness_ratio < 0 || uniqueness_ratio > 100)
+    throw ParamError("uniqueness_ratio", "must be 0..100");
+  if (speckle_window_size < 0) throw ParamError("speckle_window_size", "must be >= 0");
+  if (speckle_range < 0) throw ParamError("speckle_range", "must be >= 0");
+  if (!(downscale > 0.0 && downscale <= 1.0)) throw ParamError("downscale", "must be in (0, 1]");
+  if (roi.x < 0 || roi.y < 0 || roi.width < 0 || roi.height < 0)
+    throw ParamError("roi", "must have non-negative origin and size");
+  if (!(min_depth > 0.0)) throw ParamError("min_depth", "must be > 0");
+  if (!(max_depth > min_depth)) throw ParamError("max_depth", "must be > min_depth");
+  if (stride < 1) throw ParamError("stride", "must be >= 1");
+}
+
+StereoMatcher::StereoMatcher(Params params) : params_(params) { params_.validate(); }
+
+StereoMatcher::Result StereoMatcher::match(const Image& left, const Image& right,
+                                           const StereoCamera& camera) const {
+  const auto start = Clock::now();
+  Result result;
+  const cv::Mat left_gray = detail::gray_mat(left, "left");
+  const cv::Mat right_gray = detail::gray_mat(right, "right");
+  if (left.width != right.width || left.height != right.height)
+    throw ParamError("right", "image size differs from the left image");
+  if (camera.left.width > 0 && (camera.left.width != left.width || camera.left.height != left.height))
+    throw ParamError("left", "image size differs from the camera's width/height");
+  const double baseline = camera.baseline();
+  if (!(std::isfinite(baseline) && baseline > 0.0)) {
+    result.reason = "stereo baseline is not positive";
+    return result;
+  }
+
+  // Region to match. SGBM needs max_disparity columns left of each left pixel
+  // to find its match, so the crop is widened to the left by that margin and
+  // the margin is discarded afterwards.
+  cv::Rect roi(0, 0, left.width, left.height);
+  if (!params_.roi.empty())
+    roi = cv::Rect(params_.roi.x, params_.roi.y, params_.roi.width, params_.roi.height) & roi;
+  if (roi.area() <= 0) {
+    result.reason = "region of interest lies outside the image";
+    return result;
+  }
+  const int max_disparity = params_.min_disparity + params_.num_disparities;
+  const int crop_x0 = std::max(0, roi.x - max_disparity);
+  const cv::Rect crop(crop_x0, roi.y, roi.x + roi.width - crop_x0, roi.height);
+
+  const double s = params_.downscale;
+  cv::Mat l = left_gray(crop), r = right_gray(crop);
+  if (s < 1.0) {
+    cv::resize(l, l, cv::Size(), s, s, cv::INTER_AREA);
+    cv::resize(r, r, cv::Size(), s, s, cv::INTER_AREA);
+  }
+  const int min_d = static_cast<int>(std::floor(params_.min_disparity * s));
+  const int num_d = ((static_cast<int>(std::ceil(params_.num_disparities * s)) + 15) / 16) * 16;
+  const int channels = 1;
+  const int block_area = params_.block_size * params_.block_size;
+  const int p1 = params_.p1 > 0 ? params_.p1 : 8 * channels * block_area;
+  const int p2 = params_.p2 > 0 ? params_.p2 : 32 * channels * block_area;
+  auto sgbm = cv::StereoSGBM::create(min_d, num_d, params_.block_size, p1, p2,
+                                     params_.disp12_max_diff, params_.pre_filter_cap,
+                                     params_.uniqueness_ratio, params_.speckle_window_size,
+                                     params_.speckle_range, sgbm_mode(params_.mode));
+  const auto match_start = Clock::now();
+  cv::Mat disparity16;
+  sgbm->compute(l, r, disparity16);
+  result.match_ms = ms_since(match_start);
+
+  // Keep only the cells of the requested region (the widening is dropped).
+  const int skip = static_cast<int>(std::lround((roi.x - crop_x0) * s));
+  DisparityMap& map = result.disparity;
+  map.width = disparity16.cols - skip;
+  map.height = disparity16.rows;
+  map.x0 = roi.x;
+  map.y0 = roi.y;
+  map.scale = s;
+  map.values.assign(static_cast<std::size_t>(map.width) * map.height,
+                    std::numeric_limits<float>::quiet_NaN());
+  const float to_full = static_cast<float>(1.0 / (16.0 * s));  // fixed point 1/16 px, then rescale
+  for (int j = 0; j < map.height; ++j) {
+    const auto* row = disparity16.ptr<std::int16_t>(j) + skip;
+    float* out = map.values.data() + static_cast<std::size_t>(j) * map.width;
+    for (int i = 0; i < map.width; ++i)
+      if (row[i] >= min_d * 16) out[i] = row[i] * to_full;  // invalid = (min_d - 1) * 16
+  }
+
+  // Triangulate. When the right principal point differs, the disparity of a
+  // point at infinity is cx_left - cx_right rather than 0.
+  const double fx = camera.left.fx(), fy = camera.left.fy();
+  const double cx = camera.left.cx(), cy = camera.left.cy();
+  const double d_infinity = cx - camera.right.cx();
+  const double fb = fx * baseline;
+  StereoCloud& cloud = result.cloud;
+  cloud.points.reserve(map.values.size() / (params_.stride * params_.stride));
+  cloud.pixels.reserve(cloud.points.capacity());
+  for (int j = 0; j < map.height; j += params_.stride) {
+    const double v = map.y0 + (j + 0.5) / s - 0.5;
+    for (int i = 0; i < map.width; i += params_.stride) {
+      const float d = map.at(i, j);
+      if (!std::isfinite(d)) continue;
+      const double z = fb / (d - d_infinity);
+      if (!(z >= params_.min_depth && z <= params_.max_depth)) continue;
+      const double u = map.x0 + (i + 0.5) / s - 0.5;
+      cloud.points.emplace_back((u - cx) * z / fx, (v - cy) * z / fy, z);
+      cloud.pixels.emplace_back(static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v)));
+    }
+  }
+  result.found = !cloud.points.empty();
+  if (!result.found) result.reason = "no pixel matched inside the depth range";
+  result.total_ms = ms_since(start);
+  return result;
+}
+
+}  // namespace l2s

@@ -1,0 +1,137 @@
+// Accumulation of hole centres over a window of N frames (paper Sec. III-C,
+// last paragraph): Euclidean clustering with tolerance delta_cluster, cluster
+// sizes bounded relative to N, one point per hole.
+// Centres arrive labelled, so each hole is clustered on its own: a frame with
+// a wrong centre only adds a far point to that hole's set, which falls out of
+// the largest cluster. With few points (one per frame) a plain O(n^2)
+// single-linkage clustering is faster than building a k-d tree.
+
+#include <l2s/center_accumulator.hpp>
+
+#include <l2s/error.hpp>
+
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace l2s {
+namespace {
+
+/// Indices of the largest single-linkage cluster (ties: the earliest point's).
+std::vector<int> largest_cluster(const std::vector<Eigen::Vector3d>& points, double tolerance) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> label(n, -1);
+  std::vector<int> best;
+  for (int seed = 0; seed < n; ++seed) {
+    if (label[seed] >= 0) continue;
+    std::vector<int> members{seed};
+    label[seed] = seed;
+    for (std::size_t k = 0; k < members.size(); ++k)
+      for (int j = 0; j < n; ++j)
+        if (label[j] < 0 && (points[j] - points[members[k]]).norm() <= tolerance) {
+          label[j] = seed;
+          members.push_back(j);
+        }
+    if (members.size() > best.size()) best = std::move(members);
+  }
+  return best;
+}
+
+/// Weiszfeld's iteration, started at the mean; robust to a minority of outliers.
+Eigen::Vector3d geometric_median(const std::vector<Eigen::Vector3d>& pts) {
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  for (const auto& p : pts) m += p;
+  m /= static_cast<double>(pts.size());
+  for (int it = 0; it < 100; ++it) {
+    Eigen::Vector3d num = Eigen::Vector3d::Zero();
+    double den = 0.0;
+    for (const auto& p : pts) {
+      const double w = 1.0 / std::max((p - m).norm(), 1e-9);
+      num += w * p;
+      den += w;
+    }
+    const Eigen::Vector3d next = num / den;
+    const double step = (next - m).norm();
+    m = next;
+    if (step < 1e-9) break;
+  }
+  return m;
+}
+
+}  // namespace
+
+const char* hole_name(Hole hole) {
+  switch (hole) {
+    case Hole::TopLeft: return "TL";
+    case Hole::TopRight: return "TR";
+    case Hole::BottomLeft: return "BL";
+    case Hole::BottomRight: return "BR";
+  }
+  return "?";
+}
+
+void CenterAccumulator::Params::validate() const {
+  if (!(cluster_tolerance > 0.0)) throw ParamError("cluster_tolerance", "must be > 0");
+  if (!(min_cluster_fraction > 0.0 && min_cluster_fraction <= 1.0))
+    throw ParamError("min_cluster_fraction", "must be in (0, 1]");
+  if (!(max_cluster_fraction >= min_cluster_fraction))
+    throw ParamError("max_cluster_fraction", "must be >= min_cluster_fraction");
+  if (min_frames < 1) throw ParamError("min_frames", "must be >= 1");
+}
+
+CenterAccumulator::CenterAccumulator(Params params) : params_(params) { params_.validate(); }
+
+void CenterAccumulator::add(const HoleCenters& centers) {
+  ++frames_;
+  for (int h = 0; h < 4; ++h)
+    if (centers[h].allFinite()) centers_[h].push_back(centers[h]);
+}
+
+void CenterAccumulator::reset() {
+  frames_ = 0;
+  for (auto& c : centers_) c.clear();
+}
+
+CenterAccumulator::Result CenterAccumulator::estimate() const {
+  Result result;
+  result.frames = frames_;
+  if (frames_ < params_.min_frames) {
+    std::ostringstream reason;
+    reason << "only " << frames_ << " frames added, need " << params_.min_frames;
+    result.reason = reason.str();
+    return result;
+  }
+  const int min_size = std::max(1, static_cast<int>(std::ceil(params_.min_cluster_fraction * frames_ - 1e-9)));
+  const int max_size = static_cast<int>(std::floor(params_.max_cluster_fraction * frames_ + 1e-9));
+  std::ostringstream reasons;
+  for (int h = 0; h < 4; ++h) {
+    const char* name = hole_name(static_cast<Hole>(h));
+    const std::vector<int> members = largest_cluster(centers_[h], params_.cluster_tolerance);
+    const int size = static_cast<int>(members.size());
+    result.counts[h] = size;
+    if (size < min_size || size > max_size) {
+      if (reasons.tellp() > 0) reasons << "; ";
+      reasons << "hole " << name << ": largest cluster has " << size << " of " << frames_
+              << " centres (allowed " << min_size << ".." << max_size << ")";
+      continue;
+    }
+    std::vector<Eigen::Vector3d> cluster;
+    for (int k : members) cluster.push_back(centers_[h][k]);
+    Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
+    if (params_.estimator == Estimator::Mean) {
+      for (const auto& p : cluster) estimate += p;
+      estimate /= static_cast<double>(size);
+    } else {
+      estimate = geometric_median(cluster);
+    }
+    double sum_sq = 0.0;
+    for (const auto& p : cluster) sum_sq += (p - estimate).squaredNorm();
+    result.centers[h] = estimate;
+    result.spread[h] = std::sqrt(sum_sq / size);
+  }
+  result.reason = reasons.str();
+  result.found = result.reason.empty();
+  return result;
+}
+
+}  // namespace l2s
