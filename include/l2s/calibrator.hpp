@@ -1,0 +1,125 @@
+#pragma once
+// The Calibrator facade: streams frames through the lidar and camera branches
+// of the paper's pipeline (Sec. III), accumulates the hole centres and
+// registers them into T_lidar_camera. Frames are added one at a time, so a
+// calibration can run live; result() is available at any point.
+
+#include <l2s/board_pose_refiner.hpp>
+#include <l2s/camera.hpp>
+#include <l2s/center_accumulator.hpp>
+#include <l2s/circle_finder.hpp>
+#include <l2s/discontinuity_filter.hpp>
+#include <l2s/edge_filter.hpp>
+#include <l2s/geometry.hpp>
+#include <l2s/pass_through_filter.hpp>
+#include <l2s/plane_segmenter.hpp>
+#include <l2s/registrar.hpp>
+#include <l2s/stereo_matcher.hpp>
+#include <l2s/target.hpp>
+#include <l2s/types.hpp>
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace l2s {
+
+/// What one sensor's branch made of one frame.
+struct BranchReport {
+  bool found = false;        ///< four labelled hole centres were found
+  std::string failed_stage;  ///< stage that stopped the branch ("plane", "edges", "circles", ...)
+  std::string reason;        ///< why, in words; empty on success
+  HoleCenters centers{};     ///< [m] sensor frame, enum Hole order (valid when found)
+  std::size_t input_points = 0;   ///< points after the pass-through filter
+  std::size_t plane_inliers = 0;  ///< board-plane points
+  std::size_t edge_points = 0;    ///< edge points given to the circle finder
+  double fit_rms = 0.0;           ///< [m] circle finder's fit rms (lidar) / [px] refiner rms (camera)
+  std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
+  double milliseconds = 0.0;      ///< [ms] wall time of the branch
+};
+
+/// Diagnostics of one frame: both branches.
+struct FrameReport {
+  std::string id;        ///< frame name (file stem)
+  BranchReport lidar;
+  BranchReport camera;
+  double milliseconds = 0.0;  ///< [ms] wall time of add()
+  bool used() const { return lidar.found && camera.found; }
+};
+
+class Calibrator {
+ public:
+  /// Every stage's parameters in one place (loaded from / saved to YAML by
+  /// io::load_calibrator_params / io::save_calibrator_params).
+  struct Params {
+    // Lidar branch: pass-through, plane, discontinuities, circles.
+    PassThroughFilter::Params lidar_pass_through;
+    PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
+    DiscontinuityFilter::Params discontinuity;
+    CircleFinder::Params lidar_circles;
+    // Camera branch: stereo, pass-through, plane, Sobel edges, circles, rim refinement.
+    StereoMatcher::Params stereo;
+    PassThroughFilter::Params camera_pass_through;
+    PlaneSegmenter::Params camera_plane = PlaneSegmenter::Params::stereo();
+    EdgeFilter::Params edges;
+    CircleFinder::Params camera_circles;
+    bool refine_camera_pose = true;  ///< fit the board pose to the hole rims in both images
+    BoardPoseRefiner::Params board_refiner;
+    // Accumulation and registration.
+    CenterAccumulator::Params accumulator;
+    Registrar::Params registrar;
+    int min_frames = 1;  ///< fewest frames with centres on each side for a result, >= 1
+    bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
+
+    /// "default" (the most accurate) or "paper" (the 2017 method's values);
+    /// throws ParamError for any other name.
+    static Params preset(const std::string& name);
+    /// Throws ParamError naming the first invalid field (e.g. "lidar_plane.max_angle").
+    void validate() const;
+  };
+
+  struct Result {
+    bool found = false;   ///< T_lidar_camera is valid
+    std::string reason;   ///< why not, when !found
+    Eigen::Isometry3d T_lidar_camera = Eigen::Isometry3d::Identity();  ///< p_lidar = T * p_camera
+    int frames_added = 0;     ///< frames given to add()
+    int lidar_frames = 0;     ///< frames whose lidar branch found four centres
+    int camera_frames = 0;    ///< frames whose camera branch found four centres
+    CenterAccumulator::Result lidar_centroids;   ///< clustered lidar centres
+    CenterAccumulator::Result camera_centroids;  ///< clustered camera centres
+    Registrar::Result registration;              ///< residuals of the fit
+    std::vector<FrameReport> frames;             ///< per-frame diagnostics, in order
+    double lidar_ms = 0.0;   ///< [ms] total lidar branch time
+    double camera_ms = 0.0;  ///< [ms] total camera branch time
+  };
+
+  /// Throws ParamError for invalid params or target.
+  Calibrator(StereoCamera cameras, Target target, Params params = Params::preset("default"));
+  ~Calibrator();
+  Calibrator(Calibrator&&) noexcept;
+  Calibrator& operator=(Calibrator&&) noexcept;
+
+  /// Runs one frame through both branches and accumulates what they found.
+  /// A cloud without `ring` gets rings from elevation angles. Bad frames
+  /// (empty, NaN, no board) are reported, never thrown; images whose size
+  /// differs from the cameras throw ParamError.
+  FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,
+                  const std::string& id = "");
+
+  /// Registration of everything accumulated so far.
+  Result result() const;
+
+  /// Forgets every frame.
+  void reset();
+
+  const Params& params() const;
+  const StereoCamera& cameras() const;
+  const Target& target() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace l2s

@@ -1,0 +1,144 @@
+#include <l2s/calibrator.hpp>
+
+#include "calibrator/branches.hpp"
+
+#include <l2s/error.hpp>
+
+#include <chrono>
+#include <future>
+#include <sstream>
+
+namespace l2s {
+namespace {
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <class Branch>
+BranchReport timed(Branch&& branch) {
+  const auto start = std::chrono::steady_clock::now();
+  BranchReport report = branch();
+  report.milliseconds = milliseconds_since(start);
+  return report;
+}
+
+}  // namespace
+
+struct Calibrator::Impl {
+  StereoCamera cameras;
+  Target target;
+  Params params;
+  CenterAccumulator lidar_centers;
+  CenterAccumulator camera_centers;
+  std::vector<FrameReport> frames;
+
+  Impl(StereoCamera c, Target t, Params p)
+      : cameras(std::move(c)),
+        target(t),
+        params(std::move(p)),
+        lidar_centers(params.accumulator),
+        camera_centers(params.accumulator) {}
+};
+
+Calibrator::Calibrator(StereoCamera cameras, Target target, Params params) {
+  params.validate();
+  target.validate();
+  impl_ = std::make_unique<Impl>(std::move(cameras), target, std::move(params));
+}
+
+Calibrator::~Calibrator() = default;
+Calibrator::Calibrator(Calibrator&&) noexcept = default;
+Calibrator& Calibrator::operator=(Calibrator&&) noexcept = default;
+
+FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Image& right,
+                            const std::string& id) {
+  const auto start = std::chrono::steady_clock::now();
+  const Impl& impl = *impl_;
+  const auto lidar_branch = [&] {
+    return timed([&] { return detail::run_lidar_branch(lidar, impl.target, impl.params); });
+  };
+  const auto camera_branch = [&] {
+    return timed([&] {
+      return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params);
+    });
+  };
+
+  FrameReport report;
+  report.id = id.empty() ? std::to_string(impl_->frames.size()) : id;
+  if (impl.params.parallel_branches) {
+    // The branches share nothing but const inputs; the camera side is the slower one.
+    auto camera = std::async(std::launch::async, camera_branch);
+    report.lidar = lidar_branch();
+    report.camera = camera.get();
+  } else {
+    report.lidar = lidar_branch();
+    report.camera = camera_branch();
+  }
+  report.milliseconds = milliseconds_since(start);
+
+  if (report.lidar.found) impl_->lidar_centers.add(report.lidar.centers);
+  if (report.camera.found) impl_->camera_centers.add(report.camera.centers);
+  impl_->frames.push_back(report);
+  return report;
+}
+
+Calibrator::Result Calibrator::result() const {
+  const Impl& impl = *impl_;
+  Result result;
+  result.frames = impl.frames;
+  result.frames_added = static_cast<int>(impl.frames.size());
+  for (const auto& frame : impl.frames) {
+    result.lidar_frames += frame.lidar.found ? 1 : 0;
+    result.camera_frames += frame.camera.found ? 1 : 0;
+    result.lidar_ms += frame.lidar.milliseconds;
+    result.camera_ms += frame.camera.milliseconds;
+  }
+  if (result.frames_added == 0) {
+    result.reason = "no frames added";
+    return result;
+  }
+  const int needed = impl.params.min_frames;
+  if (result.lidar_frames < needed || result.camera_frames < needed) {
+    std::ostringstream reason;
+    if (result.lidar_frames == 0 && result.camera_frames == 0)
+      reason << "the board was never found in " << result.frames_added << " frames";
+    else
+      reason << "too few frames gave four centres: lidar " << result.lidar_frames << ", camera "
+             << result.camera_frames << " of " << result.frames_added << " (need " << needed << ")";
+    result.reason = reason.str();
+    return result;
+  }
+
+  result.lidar_centroids = impl.lidar_centers.estimate();
+  result.camera_centroids = impl.camera_centers.estimate();
+  if (!result.lidar_centroids.found) {
+    result.reason = "lidar centres do not cluster: " + result.lidar_centroids.reason;
+    return result;
+  }
+  if (!result.camera_centroids.found) {
+    result.reason = "camera centres do not cluster: " + result.camera_centroids.reason;
+    return result;
+  }
+  result.registration =
+      Registrar(impl.params.registrar).estimate(result.lidar_centroids.centers, result.camera_centroids.centers);
+  if (!result.registration.found) {
+    result.reason = "registration failed: " + result.registration.reason;
+    return result;
+  }
+  result.T_lidar_camera = result.registration.T_lidar_camera;
+  result.found = true;
+  return result;
+}
+
+void Calibrator::reset() {
+  impl_->lidar_centers.reset();
+  impl_->camera_centers.reset();
+  impl_->frames.clear();
+}
+
+const Calibrator::Params& Calibrator::params() const { return impl_->params; }
+const StereoCamera& Calibrator::cameras() const { return impl_->cameras; }
+const Target& Calibrator::target() const { return impl_->target; }
+
+}  // namespace l2s

@@ -1,0 +1,69 @@
+// The two presets of the Calibrator: "paper" reproduces the 2017 method's
+// parameters (paper Sec. IV-B); "default" is what measures best on the
+// simulated suite (README, accuracy section).
+
+#include <l2s/calibrator.hpp>
+#include <l2s/error.hpp>
+
+#include <functional>
+
+namespace l2s {
+namespace {
+
+// Prefixes a stage's ParamError with the Calibrator::Params field holding it.
+void validate_field(const std::string& prefix, const std::function<void()>& validate) {
+  try {
+    validate();
+  } catch (const ParamError& error) {
+    throw ParamError(prefix + "." + error.field(), error.problem());
+  }
+}
+
+}  // namespace
+
+Calibrator::Params Calibrator::Params::preset(const std::string& name) {
+  Params params;
+  // The board is within a few metres of both sensors; far returns only slow the search.
+  params.lidar_pass_through.max_range = 10.0;
+  params.camera_pass_through.max_range = 10.0;
+  if (name == "default") return params;
+  if (name != "paper") throw ParamError("preset", "unknown preset '" + name + "' (expected default or paper)");
+
+  // Sec. IV-B: delta_plane 1 cm, delta_inliers 5 cm (lidar) / 10 cm (camera),
+  // delta_discont 50 cm, delta_cluster 2 cm, tau_sobel 128, alpha_plane 0.55 rad.
+  params.lidar_plane = PlaneSegmenter::Params::lidar();
+  params.lidar_plane.distance_threshold = 0.01;
+  params.lidar_plane.inlier_threshold = 0.05;
+  params.lidar_plane.max_angle = 0.55;
+  params.camera_plane = PlaneSegmenter::Params::stereo();
+  params.camera_plane.distance_threshold = 0.01;
+  params.camera_plane.inlier_threshold = 0.10;
+  params.camera_plane.max_angle = 0.55;
+  params.discontinuity = DiscontinuityFilter::Params::paper();
+  params.discontinuity.min_discontinuity = 0.5;
+  params.lidar_circles = CircleFinder::Params::paper();
+  params.camera_circles = CircleFinder::Params::paper();
+  params.edges.sobel_threshold = 128.0;
+  params.refine_camera_pose = false;
+  params.accumulator.cluster_tolerance = 0.02;
+  params.accumulator.estimator = CenterAccumulator::Estimator::Mean;
+  return params;
+}
+
+void Calibrator::Params::validate() const {
+  validate_field("lidar_pass_through", [&] { lidar_pass_through.validate(); });
+  validate_field("lidar_plane", [&] { lidar_plane.validate(); });
+  validate_field("discontinuity", [&] { discontinuity.validate(); });
+  validate_field("lidar_circles", [&] { lidar_circles.validate(); });
+  validate_field("stereo", [&] { stereo.validate(); });
+  validate_field("camera_pass_through", [&] { camera_pass_through.validate(); });
+  validate_field("camera_plane", [&] { camera_plane.validate(); });
+  validate_field("edges", [&] { edges.validate(); });
+  validate_field("camera_circles", [&] { camera_circles.validate(); });
+  validate_field("board_refiner", [&] { board_refiner.validate(); });
+  validate_field("accumulator", [&] { accumulator.validate(); });
+  validate_field("registrar", [&] { registrar.validate(); });
+  if (min_frames < 1) throw ParamError("min_frames", "must be >= 1");
+}
+
+}  // namespace l2s

@@ -1,0 +1,87 @@
+#include "calibrator/branches.hpp"
+
+#include <l2s/io/image_io.hpp>
+
+namespace l2s::detail {
+namespace {
+
+BranchReport fail(BranchReport report, const char* stage, const std::string& reason) {
+  report.found = false;
+  report.failed_stage = stage;
+  report.reason = reason;
+  return report;
+}
+
+StereoCloud subset(const StereoCloud& cloud, const std::vector<std::size_t>& indices) {
+  StereoCloud out;
+  out.points.reserve(indices.size());
+  out.pixels.reserve(indices.size());
+  for (const std::size_t i : indices) {
+    out.points.push_back(cloud.points[i]);
+    out.pixels.push_back(cloud.pixels[i]);
+  }
+  return out;
+}
+
+// The board frame of target.hpp from four labelled centres on the front face:
+// the pattern is centred on the board, its rows are horizontal.
+Eigen::Isometry3d board_pose_from_centers(const HoleCenters& c, const Plane& plane) {
+  const auto tl = static_cast<int>(Hole::TopLeft), tr = static_cast<int>(Hole::TopRight);
+  const auto bl = static_cast<int>(Hole::BottomLeft), br = static_cast<int>(Hole::BottomRight);
+  Eigen::Vector3d z = plane.normal();
+  const Eigen::Vector3d center = (c[tl] + c[tr] + c[bl] + c[br]) / 4.0;
+  if (z.dot(center) > 0.0) z = -z;  // out of the front face, towards the camera at the origin
+  Eigen::Vector3d x = (c[tr] - c[tl]) + (c[br] - c[bl]);
+  x = (x - x.dot(z) * z).normalized();
+  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();
+  T_camera_board.linear().col(0) = x;
+  T_camera_board.linear().col(1) = z.cross(x);
+  T_camera_board.linear().col(2) = z;
+  T_camera_board.translation() = center;
+  return T_camera_board;
+}
+
+}  // namespace
+
+BranchReport run_camera_branch(const Image& left, const Image& right, const StereoCamera& cameras,
+                               const Target& target, const Calibrator::Params& params) {
+  BranchReport report;
+  const auto stereo = StereoMatcher(params.stereo).match(left, right, cameras);
+  if (!stereo.found) return fail(report, "stereo", stereo.reason);
+
+  const auto kept = PassThroughFilter(params.camera_pass_through).filter(stereo.cloud.points);
+  const StereoCloud cloud = subset(stereo.cloud, kept.kept);
+  report.input_points = cloud.size();
+  if (cloud.size() < 3) return fail(report, "pass_through", "no stereo points inside the pass-through limits");
+
+  const auto plane = PlaneSegmenter(params.camera_plane).segment(cloud.points, target);
+  report.plane_inliers = plane.inliers.size();
+  if (!plane.found) return fail(report, "plane", plane.reason);
+
+  const auto edges = EdgeFilter(params.edges).filter(left, subset(cloud, plane.inliers), plane.plane, target);
+  report.edge_points = edges.edges.size();
+  if (!edges.found) return fail(report, "edges", edges.reason);
+
+  const Eigen::Vector3d up_optical(0.0, -1.0, 0.0);
+  const auto circles = CircleFinder(params.camera_circles).find(edges.edges.points, plane.plane, up_optical, target);
+  report.fit_rms = circles.rms;
+  if (!circles.found) return fail(report, "circles", circles.reason);
+  report.centers = circles.centers;
+  report.found = true;
+
+  if (params.refine_camera_pose) {
+    const auto refined = BoardPoseRefiner(params.board_refiner)
+                             .refine(left, right, cameras, target,
+                                     board_pose_from_centers(circles.centers, plane.plane));
+    if (refined.converged) {
+      report.centers = refined.centers;
+      report.fit_rms = refined.rms_px;
+    } else {
+      // The stereo circles are still a valid (if less accurate) measurement.
+      report.note = "rim refinement did not converge (" + refined.reason + "); stereo circles kept";
+    }
+  }
+  return report;
+}
+
+}  // namespace l2s::detail

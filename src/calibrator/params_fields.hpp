@@ -1,0 +1,159 @@
+#pragma once
+// One list of the YAML keys of every stage's Params, walked by both the reader
+// and the writer of calibrator params files, so the two can never disagree.
+
+#include <l2s/calibrator.hpp>
+
+namespace l2s::detail {
+
+// Visitor V provides: field(name, T&) for double, int, bool, std::size_t,
+// std::uint64_t, Eigen::Vector3d; choice(name, Enum&, names) for enums; and
+// section(name, callable) for a nested mapping.
+
+template <class V>
+void visit(V& v, PassThroughFilter::Params& p) {
+  v.field("min_xyz", p.min_xyz);
+  v.field("max_xyz", p.max_xyz);
+  v.field("min_range", p.min_range);
+  v.field("max_range", p.max_range);
+}
+
+template <class V>
+void visit(V& v, PlaneSegmenter::Params& p) {
+  v.field("distance_threshold", p.distance_threshold);
+  v.field("inlier_threshold", p.inlier_threshold);
+  v.field("max_angle", p.max_angle);
+  v.field("axis", p.axis);
+  v.field("max_iterations", p.max_iterations);
+  v.field("max_candidates", p.max_candidates);
+  v.field("min_support", p.min_support);
+  v.field("max_samples", p.max_samples);
+  v.field("sample_radius", p.sample_radius);
+  v.field("patch_gap_horizontal", p.patch_gap_horizontal);
+  v.field("patch_gap_vertical", p.patch_gap_vertical);
+  v.field("size_tolerance", p.size_tolerance);
+  v.field("min_height_fraction", p.min_height_fraction);
+  v.field("seed", p.seed);
+}
+
+template <class V>
+void visit(V& v, DiscontinuityFilter::Params& p) {
+  using P = DiscontinuityFilter::EdgePlacement;
+  v.field("min_discontinuity", p.min_discontinuity);
+  v.field("azimuth_step", p.azimuth_step);
+  v.field("gap_factor", p.gap_factor);
+  v.field("drop_border_points", p.drop_border_points);
+  v.field("min_ring_edges", p.min_ring_edges);
+  v.field("max_ring_edges", p.max_ring_edges);
+  v.choice("placement", p.placement, {{P::LastBoardPoint, "last_board_point"}, {P::Midpoint, "midpoint"}});
+}
+
+template <class V>
+void visit(V& v, CircleFinder::Params& p) {
+  v.field("inlier_threshold", p.inlier_threshold);
+  v.field("min_circle_points", p.min_circle_points);
+  v.field("max_iterations", p.max_iterations);
+  v.field("max_candidates", p.max_candidates);
+  v.field("spacing_tolerance", p.spacing_tolerance);
+  v.field("project_along_rays", p.project_along_rays);
+  v.field("joint_fit", p.joint_fit);
+  v.field("model_thickness", p.model_thickness);
+  v.field("max_refine_iterations", p.max_refine_iterations);
+  v.field("seed", p.seed);
+}
+
+template <class V>
+void visit(V& v, StereoMatcher::Params& p) {
+  using M = StereoMatcher::Mode;
+  v.field("min_disparity", p.min_disparity);
+  v.field("num_disparities", p.num_disparities);
+  v.field("block_size", p.block_size);
+  v.field("p1", p.p1);
+  v.field("p2", p.p2);
+  v.field("disp12_max_diff", p.disp12_max_diff);
+  v.field("pre_filter_cap", p.pre_filter_cap);
+  v.field("uniqueness_ratio", p.uniqueness_ratio);
+  v.field("speckle_window_size", p.speckle_window_size);
+  v.field("speckle_range", p.speckle_range);
+  v.choice("mode", p.mode, {{M::Sgbm5, "sgbm5"}, {M::Hh8, "hh8"}, {M::Sgbm3Way, "sgbm3way"}, {M::Hh4, "hh4"}});
+  v.field("downscale", p.downscale);
+  v.section("roi", [&](V& roi) {
+    roi.field("x", p.roi.x);
+    roi.field("y", p.roi.y);
+    roi.field("width", p.roi.width);
+    roi.field("height", p.roi.height);
+  });
+  v.field("min_depth", p.min_depth);
+  v.field("max_depth", p.max_depth);
+  v.field("stride", p.stride);
+}
+
+template <class V>
+void visit(V& v, EdgeFilter::Params& p) {
+  using M = EdgeFilter::Magnitude;
+  v.field("sobel_threshold", p.sobel_threshold);
+  v.choice("magnitude", p.magnitude, {{M::Hypot, "hypot"}, {M::HalfL1, "half_l1"}});
+  v.field("remove_border_lines", p.remove_border_lines);
+  v.field("line_distance", p.line_distance);
+  v.field("line_iterations", p.line_iterations);
+  v.field("max_border_lines", p.max_border_lines);
+  v.field("min_line_points", p.min_line_points);
+  v.field("max_line_tilt_deg", p.max_line_tilt_deg);
+  v.field("min_border_fraction", p.min_border_fraction);
+  v.field("max_gap", p.max_gap);
+  v.field("seed", p.seed);
+}
+
+template <class V>
+void visit(V& v, BoardPoseRefiner::Params& p) {
+  v.field("samples_per_rim", p.samples_per_rim);
+  v.field("search_range_px", p.search_range_px);
+  v.field("search_step_px", p.search_step_px);
+  v.field("min_edge_strength", p.min_edge_strength);
+  v.field("huber_px", p.huber_px);
+  v.field("max_iterations", p.max_iterations);
+  v.field("gauss_newton_steps", p.gauss_newton_steps);
+  v.field("image_margin_px", p.image_margin_px);
+  v.field("converged_rotation", p.converged_rotation);
+  v.field("converged_translation", p.converged_translation);
+  v.field("use_right_image", p.use_right_image);
+  v.field("min_samples", p.min_samples);
+  v.field("max_rms_px", p.max_rms_px);
+}
+
+template <class V>
+void visit(V& v, CenterAccumulator::Params& p) {
+  using E = CenterAccumulator::Estimator;
+  v.field("cluster_tolerance", p.cluster_tolerance);
+  v.field("min_cluster_fraction", p.min_cluster_fraction);
+  v.field("max_cluster_fraction", p.max_cluster_fraction);
+  v.field("min_frames", p.min_frames);
+  v.choice("estimator", p.estimator, {{E::Mean, "mean"}, {E::GeometricMedian, "geometric_median"}});
+}
+
+template <class V>
+void visit(V& v, Registrar::Params& p) {
+  v.field("min_extent", p.min_extent);
+  v.field("min_planarity", p.min_planarity);
+}
+
+template <class V>
+void visit(V& v, Calibrator::Params& p) {
+  v.section("lidar_pass_through", [&](V& s) { visit(s, p.lidar_pass_through); });
+  v.section("lidar_plane", [&](V& s) { visit(s, p.lidar_plane); });
+  v.section("discontinuity", [&](V& s) { visit(s, p.discontinuity); });
+  v.section("lidar_circles", [&](V& s) { visit(s, p.lidar_circles); });
+  v.section("stereo", [&](V& s) { visit(s, p.stereo); });
+  v.section("camera_pass_through", [&](V& s) { visit(s, p.camera_pass_through); });
+  v.section("camera_plane", [&](V& s) { visit(s, p.camera_plane); });
+  v.section("edges", [&](V& s) { visit(s, p.edges); });
+  v.section("camera_circles", [&](V& s) { visit(s, p.camera_circles); });
+  v.field("refine_camera_pose", p.refine_camera_pose);
+  v.section("board_refiner", [&](V& s) { visit(s, p.board_refiner); });
+  v.section("accumulator", [&](V& s) { visit(s, p.accumulator); });
+  v.section("registrar", [&](V& s) { visit(s, p.registrar); });
+  v.field("min_frames", p.min_frames);
+  v.field("parallel_branches", p.parallel_branches);
+}
+
+}  // namespace l2s::detail

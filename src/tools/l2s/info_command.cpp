@@ -1,0 +1,66 @@
+// l2s info DATASET: what a dataset folder holds, checked as the calibrator reads it.
+
+#include "commands.hpp"
+
+#include <l2s/io/dataset.hpp>
+#include <l2s/metrics.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <string>
+
+namespace l2s::cli {
+namespace {
+
+int print_info(const std::string& folder, bool load_all) {
+  const auto dataset = io::Dataset::open(folder);
+  const auto& left = dataset.cameras().left;
+  const Target& target = dataset.target();
+  std::printf("dataset   %s\n", folder.c_str());
+  std::printf("cameras   %dx%d px, fx %.1f px, fy %.1f px, c (%.1f, %.1f), baseline %.4f m\n",
+              left.width, left.height, left.fx(), left.fy(), left.cx(), left.cy(),
+              dataset.cameras().baseline());
+  std::printf("target    %.3f x %.3f x %.3f m board, holes r %.3f m on %.3f x %.3f m%s\n",
+              target.board_width, target.board_height, target.board_thickness, target.hole_radius,
+              target.hole_spacing_x, target.hole_spacing_y,
+              dataset.has_target_file() ? "" : " (defaults: no target.yaml)");
+  std::printf("frames    %zu (%s .. %s)\n", dataset.size(), dataset.stems().front().c_str(),
+              dataset.stems().back().c_str());
+
+  // Loading every frame proves each file is readable; by default only the first.
+  const std::size_t count = load_all ? dataset.size() : 1;
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto frame = dataset.load(i);
+    std::set<int> rings(frame.lidar.ring.begin(), frame.lidar.ring.end());
+    const auto finite = std::count_if(frame.lidar.points.begin(), frame.lidar.points.end(),
+                                      [](const Eigen::Vector3d& p) { return p.allFinite(); });
+    std::printf("  %s: %zu lidar points (%ld finite), %zu rings%s, images %s\n", frame.stem.c_str(),
+                frame.lidar.size(), static_cast<long>(finite), rings.size(),
+                frame.rings_recovered ? " (recovered from elevation)" : "",
+                frame.left.channels == 1 ? "gray" : "colour");
+  }
+  if (const auto truth = dataset.ground_truth()) {
+    const Eigen::Vector3d t = truth->translation();
+    const Eigen::Vector3d ypr = truth->rotation().eulerAngles(2, 1, 0);
+    std::printf("truth     T_lidar_camera t = (%.4f, %.4f, %.4f) m, yaw/pitch/roll = (%.4f, %.4f, %.4f) rad\n",
+                t.x(), t.y(), t.z(), ypr[0], ypr[1], ypr[2]);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, Runner& runner) {
+  auto* command = app.add_subcommand("info", "Summarise a dataset folder (DATASET.md)");
+  auto folder = std::make_shared<std::string>();
+  auto load_all = std::make_shared<bool>(false);
+  command->add_option("dataset", *folder, "dataset folder")->required();
+  command->add_flag("--all", *load_all, "load every frame, not only the first");
+  command->callback([&runner, folder, load_all] {
+    runner = [folder, load_all] { return print_info(*folder, *load_all); };
+  });
+}
+
+}  // namespace l2s::cli

@@ -1,0 +1,34 @@
+// l2s: lidar-stereo calibration from the command line.
+// Exit codes: 0 success, 1 bad input or failed job (one-line reason on stderr),
+// 2 bad command line.
+
+#include "commands.hpp"
+
+#include <l2s/error.hpp>
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"l2s: automatic lidar-stereo extrinsic calibration (l2scalib)"};
+  app.require_subcommand(1);
+  l2s::cli::Runner runner;
+  l2s::cli::add_simulate_command(app, runner);
+  l2s::cli::add_calibrate_command(app, runner);
+  l2s::cli::add_info_command(app, runner);
+  l2s::cli::add_evaluate_command(app, runner);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error) == 0 ? 0 : 2;
+  }
+  try {
+    return runner ? runner() : 2;
+  } catch (const l2s::Error& error) {
+    std::cerr << "l2s: error: " << error.what() << "\n";
+  } catch (const std::exception& error) {
+    std::cerr << "l2s: unexpected error: " << error.what() << "\n";
+  }
+  return 1;
+}

@@ -1,0 +1,56 @@
+// End to end on the simulated suite: each of the paper's nine settings with a
+// VLP-16 at noise K = 1, both presets, accuracy checked against ground truth.
+
+#include <l2s/calibrator.hpp>
+#include <l2s/metrics.hpp>
+#include <l2s/sim/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace {
+
+constexpr int kFrames = 30;
+// Bounds of the default preset, with margin over what it measures (README).
+constexpr double kMaxTranslationError = 0.010;  // [m]
+constexpr double kMaxRotationErrorDeg = 0.15;   // [deg]
+
+class CalibratorEndToEnd : public ::testing::TestWithParam<int> {};
+
+TEST_P(CalibratorEndToEnd, BothPresetsSucceedAndDefaultIsAccurate) {
+  auto config = l2s::sim::SimulationConfig::paper(GetParam(), "vlp16");
+  config.frames = kFrames;
+  config.noise_factor = 1.0;
+  config.seed = 1000 + GetParam();
+  const l2s::sim::DatasetSimulator simulator(config);
+  const Eigen::Isometry3d truth = simulator.T_lidar_camera();
+
+  l2s::Calibrator tuned(simulator.cameras(), config.target, l2s::Calibrator::Params::preset("default"));
+  l2s::Calibrator paper(simulator.cameras(), config.target, l2s::Calibrator::Params::preset("paper"));
+  for (int i = 0; i < kFrames; ++i) {
+    const auto frame = simulator.frame(i);
+    tuned.add(frame.lidar, frame.left, frame.right);
+    paper.add(frame.lidar, frame.left, frame.right);
+  }
+
+  const auto tuned_result = tuned.result();
+  const auto paper_result = paper.result();
+  ASSERT_TRUE(tuned_result.found) << tuned_result.reason;
+  ASSERT_TRUE(paper_result.found) << paper_result.reason;
+
+  const auto tuned_error = l2s::pose_error(tuned_result.T_lidar_camera, truth);
+  const auto paper_error = l2s::pose_error(paper_result.T_lidar_camera, truth);
+  std::printf("setting %d: default e_t %.1f mm e_r %.3f deg (%d/%d frames) | paper e_t %.1f mm e_r %.3f deg\n",
+              GetParam(), tuned_error.translation * 1e3, tuned_error.rotation * 180 / M_PI,
+              tuned_result.lidar_frames, tuned_result.camera_frames, paper_error.translation * 1e3,
+              paper_error.rotation * 180 / M_PI);
+  EXPECT_LE(tuned_error.translation, kMaxTranslationError);
+  EXPECT_LE(tuned_error.rotation * 180 / M_PI, kMaxRotationErrorDeg);
+}
+
+INSTANTIATE_TEST_SUITE_P(PaperSettings, CalibratorEndToEnd, ::testing::Range(1, 10),
+                         [](const auto& info) { return "Setting" + std::to_string(info.param); });
+
+}  // namespace
