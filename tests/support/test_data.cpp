@@ -2,6 +2,7 @@
 
 #include <l2s/metrics.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -21,7 +22,10 @@ TempDir::TempDir() {
   std::ostringstream name;
   name << (info ? std::string(info->test_suite_name()) + "." + info->name() : "test") << "."
        << ::getpid() << "." << counter++;
-  path_ = (base / name.str()).string();
+  // Parameterised test names hold '/', which would nest folders.
+  std::string leaf = name.str();
+  std::replace(leaf.begin(), leaf.end(), '/', '_');
+  path_ = (base / leaf).string();
   fs::remove_all(path_);
   fs::create_directories(path_);
 }
