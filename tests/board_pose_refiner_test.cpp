@@ -22,6 +22,7 @@ Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T_true) {
 struct Case {
   const char* name;
   double distance, yaw, pitch, x;
+  bool lit = false;  ///< shade the holes' inner wall with the simulator's light
 };
 
 class BoardPoseRefinerRendered : public ::testing::TestWithParam<Case> {};
@@ -32,6 +33,7 @@ TEST_P(BoardPoseRefinerRendered, RecoversTruePoseFromPerturbedStart) {
   scene.camera = test::make_stereo_camera();
   scene.T_camera_board = test::board_pose(c.distance, c.yaw, c.pitch, c.x);
   scene.noise_sigma = 0.007;
+  if (c.lit) scene.hole_wall_light = test::simulator_light();
   const test::StereoPair pair = test::render_pair(scene);
 
   const BoardPoseRefiner::Result result = BoardPoseRefiner().refine(
@@ -50,7 +52,11 @@ TEST_P(BoardPoseRefinerRendered, RecoversTruePoseFromPerturbedStart) {
 INSTANTIATE_TEST_SUITE_P(
     Poses, BoardPoseRefinerRendered,
     ::testing::Values(Case{"FacingAt3m", 3.0, 0.0, 0.0, 0.0}, Case{"Yaw25At3m", 3.0, 25.0 * M_PI / 180.0, 0.0, 0.2},
-                      Case{"YawPitchAt4m", 4.0, -15.0 * M_PI / 180.0, 8.0 * M_PI / 180.0, -0.3}),
+                      Case{"YawPitchAt4m", 4.0, -15.0 * M_PI / 180.0, 8.0 * M_PI / 180.0, -0.3},
+                      // Turned so that each hole shows the inner wall on its shadowed side:
+                      // as dark as the background, so the face-to-wall edge beside the
+                      // back rim is the strongest one in reach (paper setting 8).
+                      Case{"ShadowedHoleWallAt2m6", 2.6, -0.2, 0.0, 0.0, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(BoardPoseRefiner, ImagesWithoutBoardGiveReason) {

@@ -176,7 +176,9 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
   // Which (view, rim point) samples are used. Visibility and the separation
   // test are decided afresh while the search range shrinks, then frozen:
   // samples toggling at those thresholds would otherwise keep the pose
-  // jittering by a few 1e-5 and never let the rounds settle.
+  // jittering by a few 1e-5 and never let the rounds settle. Once frozen, a
+  // sample that loses its edge (too weak, window clipped) is dropped for good,
+  // so the set only shrinks and cannot toggle either.
   std::vector<char> chosen(views.size() * rim_points.size(), 0);
   bool lock_selection = false;
   for (int round = 0; round < params_.max_iterations && !settled; ++round) {
@@ -197,8 +199,8 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
         const Eigen::Vector3d& X = rim_points[k];
         char& use = chosen[v * rim_points.size() + k];
         if (locked && !use) continue;
+        use = 0;
         if (!locked) {
-          use = 0;
           // The line of sight through X must pass inside the other rim circle.
           const double other_z = X.z() == 0.0 ? -thickness : 0.0;
           const double s = (other_z - eye.z()) / (X.z() - eye.z());
@@ -214,26 +216,41 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
         const Eigen::Vector2d tangent = J * (T.linear() * rim_tangents[k]);
         if (tangent.norm() < 1e-9) continue;
         const Eigen::Vector2d normal(-tangent.y() / tangent.norm(), tangent.x() / tangent.norm());
-        // A back-rim silhouette has the lit hole wall beside it, bounded by the
-        // front rim; when that band is narrow both edges merge into one
-        // gradient peak whose position is biased, differently in each view.
-        if (!locked && X.z() != 0.0 && params_.min_rim_separation_px > 0.0) {
+        // Search window, profile indices lo..hi (offset -steps..steps).
+        int lo = 0, hi = 2 * steps;
+        if (X.z() != 0.0) {
+          // A back-rim silhouette has the hole wall beside it, bounded by the
+          // front rim's edge (face | wall | back rim | background). When that
+          // band is narrow both edges merge into one gradient peak whose
+          // position is biased, differently in each view.
           Eigen::Vector2d u_front;
           if (!view.project(T * Eigen::Vector3d(X.x(), X.y(), 0.0), u_front, nullptr)) continue;
-          if (std::abs(normal.dot(u_front - u)) < params_.min_rim_separation_px) continue;
+          const double separation = normal.dot(u_front - u);  // [px] signed, along the normal
+          if (!locked && std::abs(separation) < params_.min_rim_separation_px) continue;
+          // The face-to-wall edge is often the stronger one (a wall in shadow
+          // is as dark as what is seen through the hole), so the search must
+          // not reach it: stop half-way to the front rim on that side.
+          const int reach = std::max(
+              1, static_cast<int>(std::ceil(0.5 * std::abs(separation) / params_.search_step_px)) - 1);
+          if (separation > 0.0)
+            hi = std::min(hi, steps + reach);
+          else
+            lo = std::max(lo, steps - reach);
         }
         bool inside = true;
-        for (int i = -steps; i <= steps && inside; ++i) {
+        for (int i = lo; i <= hi && inside; ++i) {
           Eigen::Vector2d g;
-          inside = view.grad.at(u.x() + i * params_.search_step_px * normal.x(),
-                                u.y() + i * params_.search_step_px * normal.y(), g);
-          profile[i + steps] = std::abs(g.dot(normal));
+          inside = view.grad.at(u.x() + (i - steps) * params_.search_step_px * normal.x(),
+                                u.y() + (i - steps) * params_.search_step_px * normal.y(), g);
+          profile[i] = std::abs(g.dot(normal));
         }
         if (!inside) continue;
-        int best = 1;
-        for (int i = 1; i < 2 * steps; ++i)
+        int best = lo + 1;
+        for (int i = lo + 1; i < hi; ++i)
           if (profile[i] > profile[best]) best = i;
         if (profile[best] < params_.min_edge_strength) continue;
+        // Still rising at a clipped end: the peak is the front rim's, beyond.
+        if ((lo > 0 && profile[lo] > profile[best]) || (hi < 2 * steps && profile[hi] > profile[best])) continue;
         const double a = profile[best - 1], b = profile[best], c = profile[best + 1];
         const double denom = a - 2.0 * b + c;
         const double offset = denom < 0.0 ? 0.5 * (a - c) / denom : 0.0;

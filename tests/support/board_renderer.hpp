@@ -30,7 +30,15 @@ struct BoardScene {
   double noise_sigma = 0.0;    ///< intensity noise, 0..1 scale
   std::uint32_t seed = 7;
   int supersampling = 8;       ///< per axis, on pixels crossed by a surface boundary
+  /// Direction towards a light, camera frame; zero draws the holes' inner wall
+  /// a flat 0.45. Otherwise the wall is Lambert-shaded (ambient 0.35), so the
+  /// side a view sees through an oblique hole is lit or in shadow depending on
+  /// which way the board is turned, as in the simulator.
+  Eigen::Vector3d hole_wall_light = Eigen::Vector3d::Zero();
 };
+
+/// The simulator's light (above, behind and left of the cameras), camera optical frame.
+inline Eigen::Vector3d simulator_light() { return Eigen::Vector3d(-0.35, -0.6, -1.0).normalized(); }
 
 /// The ideal rectified pair of the paper's experiments (fx 1626 px, B 0.12 m).
 inline StereoCamera make_stereo_camera(int width = 1280, int height = 960, double fx = 1626.0,
@@ -106,7 +114,17 @@ inline Hit trace(const BoardScene& scene, const Eigen::Isometry3d& T_board_camer
                            0.4 * value_noise(front.x(), front.y(), 0.04, 2);
           return {1, 0.5 + 0.25 * n};
         }
-        if ((back.head<2>() - holes[h]).norm() >= t.hole_radius) return {2, 0.45};
+        if ((back.head<2>() - holes[h]).norm() >= t.hole_radius) {
+          if (scene.hole_wall_light.isZero()) return {2, 0.45};
+          // Where the ray meets the cylinder |p.xy - c| = r, going in from the front face.
+          const Eigen::Vector2d f = front.head<2>() - holes[h], dxy = d.head<2>();
+          const double a = dxy.squaredNorm(), b = f.dot(dxy), c = f.squaredNorm() - t.hole_radius * t.hole_radius;
+          const double s = (-b + std::sqrt(std::max(0.0, b * b - a * c))) / a;
+          const Eigen::Vector2d inward = -(f + s * dxy).normalized();  // faces the hole's axis, i.e. the viewer
+          const Eigen::Vector3d normal_camera = T_board_camera.linear().transpose() * Eigen::Vector3d(inward.x(), inward.y(), 0.0);
+          const double lambert = std::max(0.0, normal_camera.dot(scene.hole_wall_light.normalized()));
+          return {2, 0.6 * (0.35 + 0.65 * lambert)};
+        }
       } else if (in_rect(back) && hole_of(back) < 0) {
         return {3, 0.4};
       }
