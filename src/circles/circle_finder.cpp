@@ -92,7 +92,8 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
   }
 
   const std::array<Eigen::Vector2d, 4> holes = target.hole_centers();
-  const detail::PatternMatch match = detail::match_hole_pattern(candidate_centers, holes, params_.spacing_tolerance);
+  const detail::PatternMatch match = detail::match_hole_pattern(candidate_centers, result.candidate_points, holes,
+                                                                params_.spacing_tolerance, radius);
   if (!match.found) {
     result.reason = match.reason + " (" + std::to_string(points.size()) + " edge points)";
     return result;

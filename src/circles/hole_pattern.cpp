@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace l2s::detail {
@@ -46,49 +47,69 @@ Fit rigid_fit(const std::array<Eigen::Vector2d, 4>& holes, const std::array<Eige
 }  // namespace
 
 PatternMatch match_hole_pattern(const std::vector<Eigen::Vector2d>& centers,
-                                const std::array<Eigen::Vector2d, 4>& holes, double tolerance) {
+                                const std::vector<std::size_t>& support,
+                                const std::array<Eigen::Vector2d, 4>& holes, double tolerance,
+                                double same_board_distance) {
   PatternMatch match;
   const int n = static_cast<int>(centers.size());
   if (n < 4) {
     match.reason = "only " + std::to_string(n) + " circle candidate(s), 4 holes needed";
     return match;
   }
-  int matching_sets = 0;
+  // Every set of four candidates that fits, with its best labelling.
+  struct SetFit {
+    std::array<int, 4> candidate_of_hole;
+    Fit fit;
+    std::size_t support;  // edge points on the four circles
+  };
+  std::vector<SetFit> fits;
   double best_miss = std::numeric_limits<double>::infinity();
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b)
       for (int c = b + 1; c < n; ++c)
         for (int d = c + 1; d < n; ++d) {
           std::array<int, 4> perm{{a, b, c, d}};  // sorted: next_permutation visits all 24
-          bool set_matches = false;
+          std::optional<SetFit> set_fit;
           do {
             const std::array<Eigen::Vector2d, 4> points{
                 {centers[perm[0]], centers[perm[1]], centers[perm[2]], centers[perm[3]]}};
             const Fit fit = rigid_fit(holes, points);
             best_miss = std::min(best_miss, fit.max_error);
             if (fit.max_error > tolerance) continue;
-            if (!set_matches || std::abs(fit.angle) < std::abs(match.angle)) {
-              if (!set_matches) ++matching_sets;
-              set_matches = true;
-              match.candidate_of_hole = perm;
-              match.angle = fit.angle;
-              match.offset = fit.offset;
-            }
+            if (!set_fit || std::abs(fit.angle) < std::abs(set_fit->fit.angle))
+              set_fit = SetFit{perm, fit, support[a] + support[b] + support[c] + support[d]};
           } while (std::next_permutation(perm.begin(), perm.end()));
-          if (matching_sets > 1) {
-            match.reason = "more than one set of four circle candidates fits the hole pattern (ambiguous)";
-            match.candidate_of_hole = {{-1, -1, -1, -1}};
-            return match;
-          }
+          if (set_fit) fits.push_back(*set_fit);
         }
-  if (matching_sets == 0) {
+  if (fits.empty()) {
     std::ostringstream reason;
     reason << "no four of the " << n << " circle candidates form the hole pattern (closest set misses by "
            << best_miss << " m, tolerance " << tolerance << " m)";
     match.reason = reason.str();
     return match;
   }
+  // The best-supported set is the board. Sets that put the pattern at (nearly)
+  // the same place are that board with a spurious extra candidate near a hole.
+  // A set elsewhere with comparable support is a second pattern, and the frame
+  // cannot be trusted; one made of weak candidates (texture, clutter) is not.
+  const auto best = std::min_element(fits.begin(), fits.end(), [](const SetFit& x, const SetFit& y) {
+    if (x.support != y.support) return x.support > y.support;
+    return x.fit.max_error < y.fit.max_error;
+  });
+  for (const SetFit& other : fits)
+    if ((other.fit.offset - best->fit.offset).norm() > same_board_distance &&
+        2 * other.support >= best->support) {
+      std::ostringstream reason;
+      reason << "more than one set of four circle candidates fits the hole pattern (ambiguous: pattern "
+             << "centres (" << best->fit.offset.x() << ", " << best->fit.offset.y() << ") and ("
+             << other.fit.offset.x() << ", " << other.fit.offset.y() << ") m in the board plane)";
+      match.reason = reason.str();
+      return match;
+    }
   match.found = true;
+  match.candidate_of_hole = best->candidate_of_hole;
+  match.angle = best->fit.angle;
+  match.offset = best->fit.offset;
   return match;
 }
 
