@@ -107,6 +107,16 @@ class Calibrator {
   FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,
                   const std::string& id = "");
 
+  /// The camera branch of add() alone, accumulating nothing. Its report can be
+  /// given to add(lidar, camera) of every calibrator with the same cameras,
+  /// target and camera-side params (one per lidar model, say), so the stereo
+  /// work of a frame is done once. Same exceptions as add().
+  BranchReport camera_branch(const Image& left, const Image& right) const;
+
+  /// add() with the camera branch already run by camera_branch(); only the
+  /// lidar branch runs here. The frame's milliseconds include the camera's.
+  FrameReport add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id = "");
+
   /// Registration of everything accumulated so far.
   Result result() const;
 

@@ -83,6 +83,23 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   return report;
 }
 
+BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
+  const Impl& impl = *impl_;
+  return timed([&] { return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params); });
+}
+
+FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
+  FrameReport report;
+  report.id = id.empty() ? std::to_string(impl_->frames.size()) : id;
+  report.lidar = timed([&] { return detail::run_lidar_branch(lidar, impl_->target, impl_->params); });
+  report.camera = camera;
+  report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
+  if (report.lidar.found) impl_->lidar_centers.add(report.lidar.centers);
+  if (report.camera.found) impl_->camera_centers.add(report.camera.centers);
+  impl_->frames.push_back(report);
+  return report;
+}
+
 Calibrator::Result Calibrator::result() const {
   const Impl& impl = *impl_;
   Result result;

@@ -118,12 +118,18 @@ SimulatedFrame DatasetSimulator::frame(int index) const {
   const Impl& s = *impl_;
   const auto frame = static_cast<std::uint64_t>(index);
   SimulatedFrame out;
-  out.lidar = s.lidar->sweep(*s.caster, s.config.setting.T_cambody_lidar(), frame);
+  out.lidar = sweep(index);
   StereoImages images = s.renderer->add_noise(
       s.clean, s.config.noise_factor, detail::hash_counters(s.config.seed, kImageStream), frame);
   out.left = std::move(images.left);
   out.right = std::move(images.right);
   return out;
+}
+
+LidarCloud DatasetSimulator::sweep(int index) const {
+  if (index < 0) throw ParamError("frame", "index must be >= 0");
+  const Impl& s = *impl_;
+  return s.lidar->sweep(*s.caster, s.config.setting.T_cambody_lidar(), static_cast<std::uint64_t>(index));
 }
 
 void DatasetSimulator::write(const std::string& folder, const ProgressCallback& progress) const {

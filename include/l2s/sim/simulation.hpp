@@ -67,6 +67,9 @@ class DatasetSimulator {
   DatasetSimulator& operator=(DatasetSimulator&&) noexcept;
 
   SimulatedFrame frame(int index) const;
+  /// The lidar sweep of frame(index) alone, without the images' noise (for
+  /// callers that take the images from a simulator of another lidar model).
+  LidarCloud sweep(int index) const;
 
   /// Writes the whole dataset (cameras, target, frames, ground_truth.yaml and
   /// scene.yaml with the setting and board pose) into `folder`.

@@ -15,5 +15,7 @@ void add_calibrate_command(CLI::App& app, Runner& runner);
 void add_info_command(CLI::App& app, Runner& runner);
 void add_evaluate_command(CLI::App& app, Runner& runner);
 void add_simulate_command(CLI::App& app, Runner& runner);
+void add_suite_command(CLI::App& app, Runner& runner);
+void add_detect_command(CLI::App& app, Runner& runner);
 
 }  // namespace l2s::cli

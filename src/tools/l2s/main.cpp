@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   l2s::cli::add_calibrate_command(app, runner);
   l2s::cli::add_info_command(app, runner);
   l2s::cli::add_evaluate_command(app, runner);
+  l2s::cli::add_suite_command(app, runner);
+  l2s::cli::add_detect_command(app, runner);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,75 @@
+#pragma once
+// Why was the board (not) found? Runs one frame through the lidar or camera
+// branch of the Calibrator, exactly as Calibrator::add does, and keeps what
+// every stage produced: the answer to "the board is not detected".
+
+#include <l2s/calibrator.hpp>
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+
+namespace l2s {
+
+/// Every stage of the lidar branch for one sweep. A stage that did not run
+/// (an earlier one failed) is empty; `report` names the failing stage.
+struct LidarInspection {
+  BranchReport report;  ///< what Calibrator::add reports for this sweep
+  std::optional<PassThroughFilter::Result> pass_through;  ///< indices into the input sweep
+  LidarCloud cloud;  ///< the sweep after pass-through, rings filled: what the later stages index
+  std::optional<PlaneSegmenter::Result> plane;                 ///< inliers index `cloud`
+  std::optional<DiscontinuityFilter::Result> discontinuities;  ///< sources index `cloud`
+  std::optional<CircleFinder::Result> circles;
+};
+
+/// Every stage of the camera branch for one stereo pair (see LidarInspection).
+struct CameraInspection {
+  BranchReport report;                          ///< what Calibrator::add reports for this pair
+  std::optional<StereoMatcher::Result> stereo;  ///< disparity and the whole stereo cloud
+  std::optional<PassThroughFilter::Result> pass_through;  ///< indices into stereo->cloud
+  StereoCloud cloud;  ///< stereo points after pass-through: what the later stages index
+  std::optional<PlaneSegmenter::Result> plane;  ///< inliers index `cloud`
+  std::optional<EdgeFilter::Result> edges;
+  std::optional<CircleFinder::Result> circles;
+  std::optional<Eigen::Isometry3d>
+      T_camera_board_initial;                       ///< pose from the circles, refiner's start
+  std::optional<BoardPoseRefiner::Result> refined;  ///< only when params.refine_camera_pose
+};
+
+/// Runs the lidar branch on one sweep and keeps every stage's result.
+/// Throws ParamError for invalid params or target (as the Calibrator does).
+LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
+                              const Calibrator::Params& params);
+
+/// Runs the camera branch on one rectified pair and keeps every stage's result.
+/// Throws ParamError for invalid params or target, or images whose size
+/// differs from the cameras.
+CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
+                                const Target& target, const Calibrator::Params& params);
+
+/// A readable account of the branch, one stage per block: counts, the board
+/// plane and every rejected candidate with its reason, edge counts, circle
+/// candidates in board-plane coordinates, the labelled centres, and the
+/// thresholds each stage used (the Params fields to tune). Ends with a newline.
+std::string describe(const LidarInspection& inspection, const Calibrator::Params& params);
+/// As above; `cameras` turn the disparity search range into depths.
+std::string describe(const CameraInspection& inspection, const Calibrator::Params& params,
+                     const StereoCamera& cameras);
+
+/// Debug picture of a lidar inspection: a top-down view of the filtered sweep
+/// (board points, plane candidates) beside a view in the board plane (board
+/// points, edge points, where rays through the holes crossed the plane, circle
+/// candidates, the four labelled holes and the board outline). BGR.
+Image render_lidar_inspection(const LidarInspection& inspection, const Target& target);
+
+/// Debug picture of a camera inspection: the left image with the board-plane
+/// points tinted, the edge points, the circle candidates and the four labelled
+/// holes (stereo circles, and refined rims when the refiner ran). BGR.
+Image render_camera_inspection(const Image& left, const CameraInspection& inspection,
+                               const StereoCamera& cameras, const Target& target);
+
+/// The disparity map of a camera inspection, colour-coded (near red, far blue;
+/// black = no match), at the resolution SGBM ran at. Empty when stereo did not run.
+Image render_disparity(const CameraInspection& inspection);
+
+}  // namespace l2s

@@ -1,0 +1,96 @@
+#pragma once
+// The paper's experiments (Sec. IV-B, Figs. 5-7) as a plan of calibration runs
+// on simulated data: which cells exist, their seeds, and how one group of cells
+// that share simulated frames is run (simulate -> calibrate -> evaluate, in
+// memory). `l2s suite` schedules the groups; suite_results.hpp records them.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace l2s::sim {
+
+/// What to run. Experiments: "frames" (Fig. 5), "noise" (Fig. 6), "lidars"
+/// (Fig. 7), or "quick" (a CI smoke test: 3 settings, VLP-16, K = 1, 10 frames).
+struct SuiteOptions {
+  std::vector<std::string> experiments = {"frames", "noise", "lidars"};
+  std::vector<std::string> presets = {"default", "paper"};  ///< Calibrator presets
+  int repeats = 3;         ///< repetitions per cell (independent seeds), >= 1
+  std::uint64_t seed = 1;  ///< base seed; every cell's seed derives from it
+
+  /// Throws ParamError naming the field.
+  void validate() const;
+};
+
+/// One calibration run: simulated data, preset, and how often it is evaluated.
+struct SuiteCell {
+  std::string experiment;
+  int setting = 1;          ///< Table I setting, 1..9
+  std::string lidar;        ///< vlp16 | hdl32 | hdl64
+  double noise_k = 1.0;     ///< noise factor K
+  int frames = 30;          ///< frames added
+  std::string preset;       ///< default | paper
+  int repetition = 0;       ///< 0..repeats-1
+  std::uint64_t seed = 0;   ///< simulation seed (SimulationConfig::seed)
+  bool every_frame = false; ///< evaluated after each added frame (Fig. 5), else once at the end
+
+  /// Rows the cell writes: one per evaluation.
+  int rows() const { return every_frame ? frames : 1; }
+  /// Identity of the cell within results (seed and frames excluded).
+  std::string key() const;
+};
+
+/// Cells that share one simulated sequence (same experiment, setting, K,
+/// repetition, hence the same seed and images): one per lidar and preset.
+struct SuiteGroup {
+  std::string experiment;
+  int setting = 1;
+  double noise_k = 1.0;
+  int frames = 30;
+  int repetition = 0;
+  std::uint64_t seed = 0;
+  std::vector<SuiteCell> cells;
+};
+
+/// Simulation seed of a group, a pure function of its coordinates; the lidar
+/// model is left out on purpose so that all lidars of a group see the same
+/// stereo frames (and `l2s simulate --seed` reproduces any row).
+std::uint64_t suite_seed(std::uint64_t base_seed, const std::string& experiment, int setting,
+                         double noise_k, int repetition);
+
+/// The groups of the requested experiments in a fixed order. Throws ParamError.
+std::vector<SuiteGroup> make_suite_plan(const SuiteOptions& options);
+
+/// One evaluation of one cell: a line of results.csv.
+struct SuiteRow {
+  std::string experiment;
+  int setting = 1;
+  std::string lidar;
+  double noise_k = 1.0;
+  int frames = 0;            ///< frames added when evaluated
+  std::string preset;
+  std::uint64_t seed = 0;
+  int repetition = 0;
+  bool success = false;
+  std::string reason;        ///< why not, when !success
+  double e_t = 0.0;          ///< [m] translation error (NaN on failure)
+  double e_r = 0.0;          ///< [rad] rotation error (NaN on failure)
+  int lidar_frames = 0;      ///< frames whose lidar branch found four centres
+  int camera_frames = 0;     ///< frames whose camera branch found four centres
+  double wall_s = 0.0;       ///< [s] calibration time of this run so far (simulation excluded)
+
+  /// The key of the cell it belongs to (SuiteCell::key).
+  std::string cell_key() const;
+};
+
+/// Simulates a group's frames once and calibrates each of `cells` (a subset of
+/// group.cells) on them: one simulator per lidar, one camera branch per preset
+/// and frame. Rows come in cell order, each cell's evaluations in frame order.
+/// A simulator that cannot place the board makes its cells failed rows (with
+/// the reason), never an exception. `threads` goes to the simulator (0 = all
+/// cores); `on_frame` is called after each frame.
+std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
+                                      int threads = 0, const std::function<void()>& on_frame = {});
+
+}  // namespace l2s::sim

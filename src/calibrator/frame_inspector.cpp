@@ -1,0 +1,319 @@
+// One frame through one branch with every stage's result kept, and a readable
+// account of it: what each stage found, why it stopped, and the thresholds
+// (Calibrator::Params fields) that decided it.
+
+#include <l2s/frame_inspector.hpp>
+
+#include "calibrator/branches.hpp"
+#include "detail/plane_frame.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+
+namespace l2s {
+namespace {
+
+constexpr const char* kHoleLabels[4] = {"TL", "TR", "BL", "BR"};
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// printf into a std::string.
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+void append(std::string& out, const char* format, ...) {
+  char buffer[1024];
+  va_list args;
+  va_start(args, format);
+  const int n = std::vsnprintf(buffer, sizeof(buffer), format, args);
+  va_end(args);
+  if (n > 0)
+    out.append(buffer, std::min<std::size_t>(static_cast<std::size_t>(n), sizeof(buffer) - 1));
+}
+
+std::string limit(double value, const char* unit = "") {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.2f%s", value, unit);
+  return buffer;
+}
+
+const char* yes_no(bool value) { return value ? "yes" : "no"; }
+
+double degrees(double radians) { return radians * 180.0 / M_PI; }
+
+// Angle of the plane from the sensor's vertical axis (what max_angle bounds).
+double tilt_deg(const Plane& plane, const Eigen::Vector3d& up) {
+  return degrees(std::asin(std::min(1.0, std::abs(plane.normal().dot(up.normalized())))));
+}
+
+void describe_status(std::string& out, const char* sensor, const BranchReport& report) {
+  if (report.found)
+    append(out, "%-7s FOUND: four labelled hole centres (%.1f ms)\n", sensor, report.milliseconds);
+  else
+    append(out, "%-7s FAILED at %s: %s (%.1f ms)\n", sensor, report.failed_stage.c_str(),
+           report.reason.c_str(), report.milliseconds);
+  if (!report.note.empty()) append(out, "  note: %s\n", report.note.c_str());
+}
+
+void describe_pass_through(std::string& out, const std::optional<PassThroughFilter::Result>& result,
+                           std::size_t input, const PassThroughFilter::Params& p,
+                           const char* field) {
+  if (!result) return;
+  append(out,
+         "  pass-through     %zu of %zu points kept; dropped %zu non-finite, %zu outside the box, "
+         "%zu outside the range\n",
+         result->kept.size(), input, result->dropped_non_finite, result->dropped_box,
+         result->dropped_range);
+  append(out, "                   [%s: box x %s..%s, y %s..%s, z %s..%s m; range %s..%s m]\n",
+         field, limit(p.min_xyz.x()).c_str(), limit(p.max_xyz.x()).c_str(),
+         limit(p.min_xyz.y()).c_str(), limit(p.max_xyz.y()).c_str(), limit(p.min_xyz.z()).c_str(),
+         limit(p.max_xyz.z()).c_str(), limit(p.min_range).c_str(), limit(p.max_range).c_str());
+}
+
+void describe_plane(std::string& out, const std::optional<PlaneSegmenter::Result>& result,
+                    const PlaneSegmenter::Params& p, const char* field) {
+  if (!result) return;
+  const auto& r = *result;
+  if (r.found) {
+    const Eigen::Vector3d n = r.plane.normal();
+    append(out,
+           "  plane            board: n (%.3f, %.3f, %.3f), d %.3f m, %zu inliers, rms %.1f mm, "
+           "%.1f deg from vertical\n",
+           n.x(), n.y(), n.z(), r.plane.offset(), r.inliers.size(), r.rms * 1e3,
+           tilt_deg(r.plane, p.axis));
+  } else {
+    if (r.candidates.empty())
+      append(out, "  plane            no board plane: %s\n", r.reason.c_str());
+    else
+      append(out, "  plane            no board plane among %zu candidates (each below)\n",
+             r.candidates.size());
+  }
+  append(out,
+         "                   [%s: distance_threshold %.3f m, inlier_threshold %.3f m, max_angle "
+         "%.3f rad (%.1f deg), size_tolerance %.2f, min_support %zu, max_candidates %d]\n",
+         field, p.distance_threshold, p.inlier_threshold, p.max_angle, degrees(p.max_angle),
+         p.size_tolerance, p.min_support, p.max_candidates);
+  for (std::size_t i = 0; i < r.candidates.size(); ++i) {
+    const auto& c = r.candidates[i];
+    const Eigen::Vector3d n = c.plane.normal();
+    append(out,
+           "    candidate #%zu   n (%.3f, %.3f, %.3f), d %.3f m, %.1f deg from vertical, support "
+           "%zu, patch %zu points %.2f x %.2f m: %s%s\n",
+           i, n.x(), n.y(), n.z(), c.plane.offset(), tilt_deg(c.plane, p.axis), c.support,
+           c.patch_points, c.extent_long, c.extent_short,
+           c.accepted ? "ACCEPTED as the board" : "rejected: ", c.accepted ? "" : c.reason.c_str());
+  }
+}
+
+// Circle candidates in board-plane coordinates, the labelled holes and the thresholds.
+void describe_circles(std::string& out, const std::optional<CircleFinder::Result>& result,
+                      const Plane& plane, const Eigen::Vector3d& up, const Eigen::Vector3d& centre,
+                      const CircleFinder::Params& p, const char* field, double rms_unit,
+                      const char* rms_name) {
+  if (!result) return;
+  const auto& r = *result;
+  if (r.found)
+    append(out,
+           "  circles          %zu candidates, four holes matched; fit rms %.1f %s over %zu "
+           "points, pattern roll %.1f deg\n",
+           r.candidates.size(), r.rms * rms_unit, rms_name, r.fit_points, degrees(r.pattern_angle));
+  else
+    append(out, "  circles          %zu candidates; no four holes: %s\n", r.candidates.size(),
+           r.reason.c_str());
+  append(out,
+         "                   [%s: inlier_threshold %.3f m, min_circle_points %d, spacing_tolerance "
+         "%.3f m, max_candidates %d, joint_fit %s]\n",
+         field, p.inlier_threshold, p.min_circle_points, p.spacing_tolerance, p.max_candidates,
+         yes_no(p.joint_fit));
+  if (r.candidates.empty()) return;
+  const auto frame = detail::PlaneFrame::make(plane, up, centre);
+  append(out, "    (u right, v up in the board plane from the board points' centroid)\n");
+  for (std::size_t i = 0; i < r.candidates.size(); ++i) {
+    const Eigen::Vector2d q = frame.to_plane(r.candidates[i].center);
+    std::string label;
+    for (int h = 0; h < 4; ++h)
+      if (r.matched[h] == static_cast<int>(i)) label = std::string("-> ") + kHoleLabels[h];
+    append(out, "    #%-2zu  u %+7.3f  v %+7.3f m  r %.3f m  support %3zu  %s\n", i, q.x(), q.y(),
+           r.candidates[i].radius,
+           i < r.candidate_points.size() ? r.candidate_points[i] : std::size_t{0}, label.c_str());
+  }
+}
+
+void describe_centers(std::string& out, const BranchReport& report, const char* frame_name) {
+  if (!report.found) return;
+  append(out, "  centres [m, %s]\n", frame_name);
+  for (int h = 0; h < 4; ++h) {
+    const Eigen::Vector3d& c = report.centers[h];
+    append(out, "    %s  (%8.4f, %8.4f, %8.4f)\n", kHoleLabels[h], c.x(), c.y(), c.z());
+  }
+}
+
+const char* placement_name(DiscontinuityFilter::EdgePlacement placement) {
+  return placement == DiscontinuityFilter::EdgePlacement::Midpoint ? "midpoint"
+                                                                   : "last board point";
+}
+
+}  // namespace
+
+LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
+                              const Calibrator::Params& params) {
+  params.validate();
+  target.validate();
+  LidarInspection inspection;
+  const auto start = std::chrono::steady_clock::now();
+  inspection.report = detail::run_lidar_branch(sweep, target, params, &inspection);
+  inspection.report.milliseconds = elapsed_ms(start);
+  return inspection;
+}
+
+CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
+                                const Target& target, const Calibrator::Params& params) {
+  params.validate();
+  target.validate();
+  CameraInspection inspection;
+  const auto start = std::chrono::steady_clock::now();
+  inspection.report = detail::run_camera_branch(left, right, cameras, target, params, &inspection);
+  inspection.report.milliseconds = elapsed_ms(start);
+  return inspection;
+}
+
+std::string describe(const LidarInspection& in, const Calibrator::Params& params) {
+  std::string out;
+  describe_status(out, "lidar", in.report);
+  const std::size_t input =
+      in.pass_through ? in.pass_through->kept.size() + in.pass_through->dropped_non_finite +
+                            in.pass_through->dropped_box + in.pass_through->dropped_range
+                      : 0;
+  describe_pass_through(out, in.pass_through, input, params.lidar_pass_through,
+                        "lidar_pass_through");
+  describe_plane(out, in.plane, params.lidar_plane, "lidar_plane");
+
+  if (in.discontinuities) {
+    const auto& d = *in.discontinuities;
+    const auto& c = d.counts;
+    const auto& p = params.discontinuity;
+    append(out,
+           "  discontinuities  %zu rings cross the board (%zu board points): %zu discontinuities, "
+           "%zu dropped as border points;\n",
+           c.rings, c.board_points, c.discontinuities, c.border_points);
+    append(out,
+           "                   rings kept %zu, rejected %zu (edge count not %d..%d) -> %zu edge "
+           "points%s%s\n",
+           c.rings_kept, c.rings_rejected, p.min_ring_edges, p.max_ring_edges, d.edges.size(),
+           d.found ? "" : ": ", d.found ? "" : d.reason.c_str());
+    append(out,
+           "                   [discontinuity: min_discontinuity %.2f m, min/max_ring_edges %d/%d, "
+           "drop_border_points %s, placement %s]\n",
+           p.min_discontinuity, p.min_ring_edges, p.max_ring_edges, yes_no(p.drop_border_points),
+           placement_name(p.placement));
+  }
+  if (in.circles && in.plane) {
+    const Eigen::Vector3d centre = detail::centroid(in.cloud.points, in.plane->inliers);
+    describe_circles(out, in.circles, in.plane->plane, Eigen::Vector3d::UnitZ(), centre,
+                     params.lidar_circles, "lidar_circles", 1e3, "mm");
+  }
+  describe_centers(out, in.report, "lidar frame");
+  return out;
+}
+
+std::string describe(const CameraInspection& in, const Calibrator::Params& params,
+                     const StereoCamera& cameras) {
+  std::string out;
+  describe_status(out, "camera", in.report);
+  const Eigen::Vector3d up_optical(0.0, -1.0, 0.0);
+
+  if (in.stereo) {
+    const auto& s = *in.stereo;
+    const auto& p = params.stereo;
+    const std::size_t cells = s.disparity.values.size();
+    const auto matched = std::count_if(s.disparity.values.begin(), s.disparity.values.end(),
+                                       [](float d) { return std::isfinite(d); });
+    append(out,
+           "  stereo           %ld of %zu disparity cells matched (%.0f%%) -> %zu points; SGBM "
+           "%.0f ms%s%s\n",
+           static_cast<long>(matched), cells, cells ? 100.0 * matched / cells : 0.0, s.cloud.size(),
+           s.match_ms, s.found ? "" : ": ", s.found ? "" : s.reason.c_str());
+    // Depth = fx * B / d: the search range in metres is what a user can check.
+    const double fxb = cameras.left.fx() * cameras.baseline();
+    const int d_min = std::max(1, p.min_disparity), d_max = p.min_disparity + p.num_disparities;
+    append(out,
+           "                   [stereo: min_disparity %d px, num_disparities %d px (depths "
+           "%.2f..%.2f m), block_size %d, downscale %.2f, depth %.2f..%.2f m]\n",
+           p.min_disparity, p.num_disparities, fxb / d_max, fxb / d_min, p.block_size, p.downscale,
+           p.min_depth, p.max_depth);
+  }
+  describe_pass_through(out, in.pass_through, in.stereo ? in.stereo->cloud.size() : 0,
+                        params.camera_pass_through, "camera_pass_through");
+  describe_plane(out, in.plane, params.camera_plane, "camera_plane");
+
+  if (in.edges) {
+    const auto& e = *in.edges;
+    const auto& p = params.edges;
+    append(out,
+           "  edges            %zu board points: %zu on image edges, %zu removed as %d border "
+           "lines -> %zu edge points%s%s\n",
+           e.input_points, e.edge_points, e.border_points, e.border_lines, e.edges.size(),
+           e.found ? "" : ": ", e.found ? "" : e.reason.c_str());
+    append(out,
+           "                   [edges: sobel_threshold %.0f, magnitude %s, remove_border_lines %s, "
+           "line_distance %.3f m, max_border_lines %d, min_line_points %d]\n",
+           p.sobel_threshold, p.magnitude == EdgeFilter::Magnitude::Hypot ? "hypot" : "half-L1",
+           yes_no(p.remove_border_lines), p.line_distance, p.max_border_lines, p.min_line_points);
+  }
+  if (in.circles && in.plane) {
+    const Eigen::Vector3d centre = detail::centroid(in.cloud.points, in.plane->inliers);
+    describe_circles(out, in.circles, in.plane->plane, up_optical, centre, params.camera_circles,
+                     "camera_circles", 1e3, "mm");
+  }
+  if (in.refined) {
+    const auto& r = *in.refined;
+    const auto& p = params.board_refiner;
+    if (r.converged)
+      append(out, "  rim refinement   converged: rms %.2f px over %d samples, %d rounds\n",
+             r.rms_px, r.samples, r.iterations);
+    else
+      append(out, "  rim refinement   did not converge (%s): rms %.2f px, %d samples, %d rounds\n",
+             r.reason.c_str(), r.rms_px, r.samples, r.iterations);
+    append(out,
+           "                   [board_refiner: search_range_px %.1f -> %.1f, min_edge_strength "
+           "%.1f, max_rms_px %.2f, min_samples %d]\n",
+           p.search_range_px, p.final_search_range_px, p.min_edge_strength, p.max_rms_px,
+           p.min_samples);
+    const Eigen::Isometry3d& T = r.converged ? r.T_camera_board : *in.T_camera_board_initial;
+    const Eigen::Vector3d t = T.translation();
+    const Eigen::Vector3d z = T.linear().col(2);
+    append(out, "  board pose       %s: centre (%.4f, %.4f, %.4f) m, normal (%.3f, %.3f, %.3f)\n",
+           r.converged ? "refined" : "from the stereo circles", t.x(), t.y(), t.z(), z.x(), z.y(),
+           z.z());
+  } else if (in.circles && in.circles->found) {
+    append(out,
+           "  rim refinement   off (refine_camera_pose: false); centres from the stereo circles\n");
+    if (in.T_camera_board_initial) {
+      const Eigen::Vector3d t = in.T_camera_board_initial->translation();
+      const Eigen::Vector3d z = in.T_camera_board_initial->linear().col(2);
+      append(out,
+             "  board pose       from the stereo circles: centre (%.4f, %.4f, %.4f) m, normal "
+             "(%.3f, %.3f, %.3f)\n",
+             t.x(), t.y(), t.z(), z.x(), z.y(), z.z());
+    }
+  }
+  if (!in.report.found && in.circles && in.circles->found) {
+    // A later step rejected the frame: the circles' centres still tell where the holes are.
+    BranchReport circles = in.report;
+    circles.found = true;
+    circles.centers = in.circles->centers;
+    describe_centers(out, circles, "left camera optical frame; stereo circles, not used");
+  }
+  describe_centers(out, in.report, "left camera optical frame");
+  return out;
+}
+
+}  // namespace l2s

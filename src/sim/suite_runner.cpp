@@ -1,0 +1,151 @@
+// One group of suite cells: the frames are simulated once, the stereo branch
+// runs once per preset and frame (it does not depend on the lidar), and every
+// cell's Calibrator gets its own lidar sweep with the shared camera report.
+
+#include <l2s/sim/suite.hpp>
+
+#include <l2s/calibrator.hpp>
+#include <l2s/error.hpp>
+#include <l2s/metrics.hpp>
+#include <l2s/sim/simulation.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+
+namespace l2s::sim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+SuiteRow row_of(const SuiteCell& cell) {
+  SuiteRow row;
+  row.experiment = cell.experiment;
+  row.setting = cell.setting;
+  row.lidar = cell.lidar;
+  row.noise_k = cell.noise_k;
+  row.frames = cell.frames;
+  row.preset = cell.preset;
+  row.seed = cell.seed;
+  row.repetition = cell.repetition;
+  row.e_t = row.e_r = std::numeric_limits<double>::quiet_NaN();
+  return row;
+}
+
+SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
+                  const Eigen::Isometry3d& T_true, double wall_s) {
+  SuiteRow row = row_of(cell);
+  row.frames = result.frames_added;
+  row.success = result.found;
+  row.reason = result.reason;
+  row.lidar_frames = result.lidar_frames;
+  row.camera_frames = result.camera_frames;
+  row.wall_s = wall_s;
+  if (result.found) {
+    const PoseError error = pose_error(result.T_lidar_camera, T_true);
+    row.e_t = error.translation;
+    row.e_r = error.rotation;
+  }
+  return row;
+}
+
+// A cell in progress: its calibrator and the time spent on it so far.
+struct Run {
+  const SuiteCell* cell = nullptr;
+  const DatasetSimulator* simulator = nullptr;
+  std::optional<Calibrator> calibrator;
+  double seconds = 0.0;
+};
+
+}  // namespace
+
+std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
+                                      int threads, const std::function<void()>& on_frame) {
+  // One simulator per lidar; the first that places the board fixes the pose
+  // for the others, so they render the same scene (and the same images).
+  std::map<std::string, std::unique_ptr<DatasetSimulator>> simulators;
+  std::map<std::string, std::string> failures;
+  const DatasetSimulator* source = nullptr;
+  for (const auto& cell : cells) {
+    if (simulators.count(cell.lidar) || failures.count(cell.lidar)) continue;
+    SimulationConfig config = SimulationConfig::paper(group.setting, cell.lidar);
+    config.frames = group.frames;
+    config.noise_factor = group.noise_k;
+    config.seed = group.seed;
+    config.threads = threads;
+    if (source) config.board_pose = source->board_pose();
+    try {
+      auto simulator = std::make_unique<DatasetSimulator>(config);
+      if (!source) source = simulator.get();
+      simulators[cell.lidar] = std::move(simulator);
+    } catch (const Error& error) {
+      failures[cell.lidar] = std::string("simulation: ") + error.what();
+    }
+  }
+
+  std::vector<SuiteRow> rows;
+  std::vector<Run> runs;
+  for (const auto& cell : cells) {
+    if (failures.count(cell.lidar)) continue;
+    const DatasetSimulator& simulator = *simulators.at(cell.lidar);
+    Run run;
+    run.cell = &cell;
+    run.simulator = &simulator;
+    run.calibrator.emplace(simulator.cameras(), simulator.config().target,
+                           Calibrator::Params::preset(cell.preset));
+    runs.push_back(std::move(run));
+  }
+
+  std::map<const SuiteCell*, std::vector<SuiteRow>> evaluations;
+  for (int i = 0; i < group.frames && source; ++i) {
+    SimulatedFrame frame = source->frame(i);
+    std::map<std::string, LidarCloud> sweeps;
+    for (const auto& [lidar, simulator] : simulators)
+      sweeps[lidar] = simulator.get() == source ? std::move(frame.lidar) : simulator->sweep(i);
+    // The camera branch once per preset: its parameters are the same for every lidar.
+    std::map<std::string, BranchReport> camera;
+    for (const Run& run : runs)
+      if (!camera.count(run.cell->preset))
+        camera[run.cell->preset] = run.calibrator->camera_branch(frame.left, frame.right);
+
+    const std::string id = std::to_string(i);
+    for (Run& run : runs) {
+      const auto start = Clock::now();
+      run.calibrator->add(sweeps.at(run.cell->lidar), camera.at(run.cell->preset), id);
+      const bool evaluated = run.cell->every_frame || i + 1 == group.frames;
+      std::optional<Calibrator::Result> result;
+      if (evaluated) result = run.calibrator->result();
+      run.seconds += seconds_since(start) + camera.at(run.cell->preset).milliseconds * 1e-3;
+      if (result)
+        evaluations[run.cell].push_back(
+            evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds));
+    }
+    if (on_frame) on_frame();
+  }
+  if (!source && on_frame)
+    for (int i = 0; i < group.frames; ++i) on_frame();
+
+  for (const auto& cell : cells) {
+    if (const auto failed = failures.find(cell.lidar); failed != failures.end()) {
+      // No data, so no evaluation: the cell fails at every frame count it would have had.
+      for (int n = cell.every_frame ? 1 : cell.frames; n <= cell.frames; ++n) {
+        SuiteRow row = row_of(cell);
+        row.frames = n;
+        row.reason = failed->second;
+        rows.push_back(row);
+      }
+      continue;
+    }
+    for (auto& row : evaluations[&cell]) rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+}  // namespace l2s::sim

@@ -1,0 +1,134 @@
+// l2s detect DATASET --frame STEM: one frame through one branch (or both),
+// showing what every stage found and the thresholds it used, with debug
+// pictures. This is how a user finds out why the board is not detected.
+
+#include "commands.hpp"
+
+#include <l2s/calibrator.hpp>
+#include <l2s/error.hpp>
+#include <l2s/frame_inspector.hpp>
+#include <l2s/io/calibrator_yaml.hpp>
+#include <l2s/io/dataset.hpp>
+#include <l2s/io/image_io.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace l2s::cli {
+namespace {
+
+struct DetectOptions {
+  std::string dataset;
+  std::string frame;
+  std::string sensor = "both";
+  std::string preset = "default";
+  std::string params_file;
+  std::string output;
+};
+
+// The frame by stem; a plain number that is not a stem is taken as an index.
+std::size_t find_frame(const io::Dataset& dataset, const std::string& frame) {
+  const auto& stems = dataset.stems();
+  if (frame.empty()) return 0;
+  const auto it = std::find(stems.begin(), stems.end(), frame);
+  if (it != stems.end()) return static_cast<std::size_t>(it - stems.begin());
+  if (!frame.empty() && frame.find_first_not_of("0123456789") == std::string::npos &&
+      frame.size() < 9) {
+    const std::size_t index = std::stoul(frame);
+    if (index < stems.size()) return index;
+  }
+  throw FileError(dataset.folder(), "no frame '" + frame + "' (" + std::to_string(stems.size()) +
+                                        " frames, " + stems.front() + " .. " + stems.back() + ")");
+}
+
+std::string write_image(const fs::path& folder, const std::string& name, const Image& image) {
+  if (image.empty()) return {};
+  const std::string path = (folder / name).string();
+  io::write_png(path, image);
+  return path;
+}
+
+int run_detect(const DetectOptions& options) {
+  const auto dataset = io::Dataset::open(options.dataset);
+  const Calibrator::Params params = options.params_file.empty()
+                                        ? Calibrator::Params::preset(options.preset)
+                                        : io::read_calibrator_params(options.params_file);
+  const io::Frame frame = dataset.load(find_frame(dataset, options.frame));
+  const fs::path debug_dir =
+      options.output.empty() ? fs::path(options.dataset) / "debug" : fs::path(options.output);
+  fs::create_directories(debug_dir);
+  const bool lidar = options.sensor != "camera", camera = options.sensor != "lidar";
+
+  const std::string params_name =
+      options.params_file.empty() ? "preset " + options.preset : options.params_file;
+  std::printf("frame   %s of %s (%s)\n", frame.stem.c_str(), options.dataset.c_str(),
+              params_name.c_str());
+  const Target& target = dataset.target();
+  std::printf("target  %.3f x %.3f m board, holes r %.3f m on %.3f x %.3f m%s\n\n",
+              target.board_width, target.board_height, target.hole_radius, target.hole_spacing_x,
+              target.hole_spacing_y,
+              dataset.has_target_file() ? "" : " (defaults: no target.yaml)");
+
+  std::vector<std::string> failures, written;
+  if (lidar) {
+    const LidarInspection inspection = inspect_lidar(frame.lidar, target, params);
+    std::printf("%s\n", describe(inspection, params).c_str());
+    written.push_back(write_image(debug_dir, frame.stem + "_lidar.png",
+                                  render_lidar_inspection(inspection, target)));
+    if (!inspection.report.found)
+      failures.push_back("lidar: " + inspection.report.failed_stage + ": " +
+                         inspection.report.reason);
+  }
+  if (camera) {
+    const CameraInspection inspection =
+        inspect_camera(frame.left, frame.right, dataset.cameras(), target, params);
+    std::printf("%s\n", describe(inspection, params, dataset.cameras()).c_str());
+    written.push_back(
+        write_image(debug_dir, frame.stem + "_camera.png",
+                    render_camera_inspection(frame.left, inspection, dataset.cameras(), target)));
+    written.push_back(
+        write_image(debug_dir, frame.stem + "_disparity.png", render_disparity(inspection)));
+    if (!inspection.report.found)
+      failures.push_back("camera: " + inspection.report.failed_stage + ": " +
+                         inspection.report.reason);
+  }
+
+  const char* prefix = "wrote   ";
+  for (const auto& path : written)
+    if (!path.empty()) std::printf("%s%s\n", prefix, path.c_str()), prefix = "        ";
+  if (failures.empty()) return 0;
+  std::string reason;
+  for (const auto& failure : failures) reason += (reason.empty() ? "" : "; ") + failure;
+  std::fflush(stdout);
+  std::fprintf(stderr, "l2s: board not found in frame %s: %s\n", frame.stem.c_str(),
+               reason.c_str());
+  return 1;
+}
+
+}  // namespace
+
+void add_detect_command(CLI::App& app, Runner& runner) {
+  auto* command = app.add_subcommand(
+      "detect",
+      "Run one frame through the lidar and/or camera branch and show why the board is (not) found");
+  auto options = std::make_shared<DetectOptions>();
+  command->add_option("dataset", options->dataset, "dataset folder (DATASET.md)")->required();
+  command->add_option("--frame", options->frame, "frame stem, or index (default: the first frame)");
+  command->add_option("--sensor", options->sensor, "branch to run")
+      ->check(CLI::IsMember({"lidar", "camera", "both"}));
+  command->add_option("--preset", options->preset, "parameter preset")
+      ->check(CLI::IsMember({"default", "paper"}));
+  command->add_option("--params", options->params_file, "parameters YAML (overrides --preset)")
+      ->check(CLI::ExistingFile);
+  command->add_option("-o,--output", options->output,
+                      "folder for the debug images (default DATASET/debug)");
+  command->callback([&runner, options] { runner = [options] { return run_detect(*options); }; });
+}
+
+}  // namespace l2s::cli

@@ -1,0 +1,58 @@
+// The Calibrator facade's streaming API: a camera report computed once and
+// shared (camera_branch + add(lidar, camera)) gives what add() gives.
+
+#include <l2s/calibrator.hpp>
+#include <l2s/sim/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+namespace l2s {
+namespace {
+
+TEST(Calibrator, SharedCameraReportGivesTheSameResultAsAdd) {
+  auto config = sim::SimulationConfig::paper(8, "vlp16");
+  config.frames = 3;
+  config.seed = 7;
+  const sim::DatasetSimulator simulator(config);
+
+  // The paper preset: no rim refinement, so three frames surely calibrate.
+  const auto params = Calibrator::Params::preset("paper");
+  Calibrator whole(simulator.cameras(), config.target, params);
+  Calibrator shared(simulator.cameras(), config.target, params);
+  for (int i = 0; i < config.frames; ++i) {
+    const auto frame = simulator.frame(i);
+    const FrameReport expected = whole.add(frame.lidar, frame.left, frame.right);
+    const BranchReport camera = shared.camera_branch(frame.left, frame.right);
+    EXPECT_EQ(shared.result().frames_added, i) << "camera_branch() must not accumulate";
+    const FrameReport report = shared.add(frame.lidar, camera);
+    EXPECT_EQ(report.id, expected.id);
+    EXPECT_EQ(report.lidar.found, expected.lidar.found);
+    EXPECT_EQ(report.camera.found, expected.camera.found);
+    EXPECT_GE(report.milliseconds, camera.milliseconds);
+  }
+  const auto a = whole.result();
+  const auto b = shared.result();
+  ASSERT_TRUE(a.found) << a.reason;
+  ASSERT_TRUE(b.found) << b.reason;
+  EXPECT_EQ(a.lidar_frames, b.lidar_frames);
+  EXPECT_EQ(a.camera_frames, b.camera_frames);
+  EXPECT_TRUE(a.T_lidar_camera.isApprox(b.T_lidar_camera, 1e-12));
+}
+
+TEST(Calibrator, LidarFromAnotherModelUsesTheSameCameraReport) {
+  // The suite's fast path: one simulator per lidar model, images from the first.
+  auto config = sim::SimulationConfig::paper(2, "vlp16");
+  config.frames = 1;
+  config.seed = 3;
+  const sim::DatasetSimulator vlp16(config);
+  config.lidar = "hdl32";
+  config.board_pose = vlp16.board_pose();
+  const sim::DatasetSimulator hdl32(config);
+  const auto frame = vlp16.frame(0);
+  const auto other = hdl32.frame(0);
+  EXPECT_TRUE(frame.left.pixels == other.left.pixels) << "images must not depend on the lidar model";
+  EXPECT_TRUE(hdl32.sweep(0).points == other.lidar.points);
+}
+
+}  // namespace
+}  // namespace l2s

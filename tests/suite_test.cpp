@@ -1,0 +1,276 @@
+// The pure parts of `l2s suite`: the plan (cells, groups, seeds), results.csv
+// round trip and resume, statistics, thresholds. The runner is exercised by
+// `l2s suite --quick` in CI and by one small group here.
+
+#include <l2s/sim/suite.hpp>
+#include <l2s/sim/suite_results.hpp>
+
+#include <l2s/error.hpp>
+
+#include "support/test_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+namespace l2s::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::size_t count_cells(const std::vector<SuiteGroup>& plan) {
+  std::size_t n = 0;
+  for (const auto& group : plan) n += group.cells.size();
+  return n;
+}
+
+SuiteOptions options_for(const std::string& experiment, int repeats) {
+  SuiteOptions options;
+  options.experiments = {experiment};
+  options.repeats = repeats;
+  return options;
+}
+
+std::string temp_file(const std::string& name) {
+  const char* root = std::getenv("L2S_TEST_TMP");
+  const fs::path folder = fs::path(root ? root : fs::temp_directory_path().string()) / "suite_test";
+  fs::create_directories(folder);
+  return (folder / name).string();
+}
+
+SuiteRow sample_row() {
+  SuiteRow row;
+  row.experiment = "noise";
+  row.setting = 4;
+  row.lidar = "vlp16";
+  row.noise_k = 2.0;
+  row.frames = 30;
+  row.preset = "paper";
+  row.seed = 123456789;
+  row.repetition = 2;
+  row.success = true;
+  row.e_t = 0.0012345678901234567;
+  row.e_r = 1.0 / 3.0;
+  row.lidar_frames = 29;
+  row.camera_frames = 30;
+  row.wall_s = 4.25;
+  return row;
+}
+
+TEST(SuitePlan, CountsCellsPerExperiment) {
+  const int r = 3;
+  const auto frames = make_suite_plan(options_for("frames", r));
+  EXPECT_EQ(frames.size(), 9u * r);
+  EXPECT_EQ(count_cells(frames), 9u * r * 2);  // x presets
+  for (const auto& group : frames)
+    for (const auto& cell : group.cells) {
+      EXPECT_TRUE(cell.every_frame);
+      EXPECT_EQ(cell.rows(), 40);
+    }
+  const auto noise = make_suite_plan(options_for("noise", r));
+  EXPECT_EQ(noise.size(), 4u * 9 * r);
+  EXPECT_EQ(count_cells(noise), 4u * 9 * r * 2);
+  const auto lidars = make_suite_plan(options_for("lidars", r));
+  EXPECT_EQ(lidars.size(), 9u * r);
+  EXPECT_EQ(count_cells(lidars), 9u * r * 3 * 2);  // all lidars of a group share its frames
+  for (const auto& group : lidars)
+    for (const auto& cell : group.cells) EXPECT_EQ(cell.rows(), 1);
+
+  SuiteOptions one_preset = options_for("noise", 1);
+  one_preset.presets = {"default"};
+  EXPECT_EQ(count_cells(make_suite_plan(one_preset)), 36u);
+  EXPECT_EQ(count_cells(make_suite_plan(options_for("quick", 1))), 3u * 2);
+}
+
+TEST(SuitePlan, SeedsAreDeterministicAndDistinct) {
+  SuiteOptions options;
+  options.repeats = 4;
+  const auto plan = make_suite_plan(options);
+  const auto again = make_suite_plan(options);
+  std::set<std::uint64_t> seeds;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    EXPECT_EQ(plan[i].seed, again[i].seed);
+    seeds.insert(plan[i].seed);
+    for (const auto& cell : plan[i].cells) EXPECT_EQ(cell.seed, plan[i].seed);
+  }
+  EXPECT_EQ(seeds.size(), plan.size()) << "every group needs its own seed";
+  options.seed = 2;
+  EXPECT_NE(make_suite_plan(options)[0].seed, plan[0].seed);
+  EXPECT_NE(suite_seed(1, "noise", 1, 1.0, 0), suite_seed(1, "lidars", 1, 1.0, 0));
+  EXPECT_NE(suite_seed(1, "noise", 1, 1.0, 0), suite_seed(1, "noise", 1, 2.0, 0));
+}
+
+TEST(SuitePlan, RejectsUnknownNames) {
+  EXPECT_THROW(make_suite_plan(options_for("weather", 1)), ParamError);
+  SuiteOptions options;
+  options.presets = {"fast"};
+  EXPECT_THROW(make_suite_plan(options), ParamError);
+  EXPECT_THROW(make_suite_plan(options_for("noise", 0)), ParamError);
+}
+
+TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
+  SuiteRow row = sample_row();
+  row.success = false;
+  row.reason = "too few frames: lidar 3, camera \"0\" of 30\nsecond line";
+  row.e_t = row.e_r = std::nan("");
+  const SuiteRow back = parse_csv_line(to_csv_line(row));
+  EXPECT_EQ(back.experiment, row.experiment);
+  EXPECT_EQ(back.setting, row.setting);
+  EXPECT_EQ(back.noise_k, row.noise_k);
+  EXPECT_EQ(back.seed, row.seed);
+  EXPECT_EQ(back.repetition, row.repetition);
+  EXPECT_FALSE(back.success);
+  EXPECT_EQ(back.reason, "too few frames: lidar 3, camera \"0\" of 30 second line");
+  EXPECT_TRUE(std::isnan(back.e_t));
+  EXPECT_EQ(back.cell_key(), row.cell_key());
+
+  const SuiteRow good = parse_csv_line(to_csv_line(sample_row()));
+  EXPECT_EQ(good.e_t, sample_row().e_t) << "errors are written exactly";
+  EXPECT_EQ(good.e_r, sample_row().e_r);
+  EXPECT_THROW(parse_csv_line("noise,4,vlp16"), Error);
+}
+
+TEST(SuiteCsv, ResumeSkipsFinishedCellsAndDropsPartialOnes) {
+  const auto plan = make_suite_plan(options_for("quick", 1));  // 3 groups x 2 presets, 1 row each
+  std::vector<SuiteRow> rows;
+  for (const auto& cell : plan[0].cells) {
+    SuiteRow row = sample_row();
+    row.experiment = cell.experiment;
+    row.setting = cell.setting;
+    row.lidar = cell.lidar;
+    row.noise_k = cell.noise_k;
+    row.frames = cell.frames;
+    row.preset = cell.preset;
+    row.repetition = cell.repetition;
+    row.seed = cell.seed;
+    rows.push_back(row);
+  }
+  const std::string path = temp_file("results.csv");
+  write_suite_csv(path, rows);
+  // An interrupted append: half a line without its newline.
+  const std::string half = to_csv_line(rows[0]).substr(0, 20);
+  { std::ofstream(path, std::ios::app) << half; }
+
+  const SuiteCsv csv = read_suite_csv(path);
+  EXPECT_TRUE(csv.trimmed);
+  ASSERT_EQ(csv.rows.size(), rows.size());
+  const SuiteResume resume = resume_suite(plan, csv.rows);
+  EXPECT_EQ(resume.done.size(), 2u);
+  EXPECT_EQ(resume.kept.size(), 2u);
+  EXPECT_EQ(resume.dropped, 0u);
+  EXPECT_TRUE(resume.done.count(plan[0].cells[0].key()));
+  EXPECT_FALSE(resume.done.count(plan[1].cells[0].key()));
+
+  // A streaming cell with only some of its evaluations is run again.
+  const auto frames_plan = make_suite_plan(options_for("frames", 1));
+  const SuiteCell& cell = frames_plan[0].cells[0];
+  std::vector<SuiteRow> partial;
+  for (int n = 1; n <= 5; ++n) {
+    SuiteRow row = sample_row();
+    row.experiment = cell.experiment;
+    row.setting = cell.setting;
+    row.noise_k = cell.noise_k;
+    row.preset = cell.preset;
+    row.repetition = cell.repetition;
+    row.seed = cell.seed;
+    row.frames = n;
+    partial.push_back(row);
+  }
+  const SuiteResume again = resume_suite(frames_plan, partial);
+  EXPECT_TRUE(again.done.empty());
+  EXPECT_EQ(again.dropped, 5u);
+
+  // Rows of another --seed are refused, not mixed.
+  partial[0].seed += 1;
+  EXPECT_THROW(resume_suite(frames_plan, partial), Error);
+  const std::string other = temp_file("other.csv");
+  test::write_text(other, "a,b\n1,2\n");
+  EXPECT_THROW(read_suite_csv(other), FileError) << "a CSV of another tool is not overwritten";
+}
+
+TEST(SuiteStats, MedianAndInterquartileRangeInterpolateLinearly) {
+  EXPECT_DOUBLE_EQ(percentile({3.0, 1.0, 2.0}, 50.0), 2.0);
+  EXPECT_DOUBLE_EQ(percentile({4.0, 1.0, 3.0, 2.0}, 50.0), 2.5);
+  EXPECT_DOUBLE_EQ(percentile({1.0, 2.0, 3.0, 4.0, 5.0}, 25.0), 2.0);
+  EXPECT_DOUBLE_EQ(percentile({1.0, 2.0, 3.0, 4.0}, 75.0), 3.25);  // numpy: 3.25
+  EXPECT_TRUE(std::isnan(percentile({}, 50.0)));
+
+  std::vector<SuiteRow> rows(5, sample_row());
+  for (int i = 0; i < 5; ++i) rows[i].e_t = 0.001 * (i + 1);
+  rows[4].success = false;  // counted, not in the errors
+  std::vector<const SuiteRow*> pointers;
+  for (const auto& row : rows) pointers.push_back(&row);
+  const SuiteStats stats = suite_stats(pointers);
+  EXPECT_EQ(stats.runs, 5);
+  EXPECT_EQ(stats.successes, 4);
+  EXPECT_DOUBLE_EQ(stats.success_rate(), 0.8);
+  EXPECT_NEAR(stats.e_t_median, 0.0025, 1e-15);
+  EXPECT_NEAR(stats.e_t_iqr, 0.0015, 1e-15);
+}
+
+TEST(SuiteStats, SummaryHasATablePerExperimentAndTheFailures) {
+  std::vector<SuiteRow> rows(2, sample_row());
+  rows[1].success = false;
+  rows[1].reason = "the board was never found in 30 frames";
+  const std::string summary = suite_summary_markdown(rows);
+  EXPECT_NE(summary.find("## noise"), std::string::npos);
+  EXPECT_NE(summary.find("| vlp16 | 2 | paper | 30 | 4 | 2 | 50 % | 1.23 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("1 x the board was never found in # frames"), std::string::npos) << summary;
+}
+
+TEST(SuiteThresholds, ReportsCellsOutsideTheLimits) {
+  const std::string path = temp_file("thresholds.yaml");
+  test::write_text(path,
+                   "presets:\n  paper: {min_success_rate: 1.0, max_e_t_mm: 1.0, max_e_r_deg: 30}\n");
+  const SuiteThresholds thresholds = read_suite_thresholds(path);
+  ASSERT_EQ(thresholds.presets.size(), 1u);
+  EXPECT_DOUBLE_EQ(thresholds.presets[0].second.max_e_t, 0.001);
+
+  std::vector<SuiteRow> rows(1, sample_row());  // e_t 1.23 mm > 1 mm
+  EXPECT_EQ(check_suite_thresholds(rows, thresholds).size(), 1u);
+  rows[0].e_t = 0.0005;
+  EXPECT_TRUE(check_suite_thresholds(rows, thresholds).empty());
+  rows[0].success = false;
+  EXPECT_EQ(check_suite_thresholds(rows, thresholds).size(), 1u);
+  rows[0].preset = "default";  // no limits given for it
+  EXPECT_TRUE(check_suite_thresholds(rows, thresholds).empty());
+
+  test::write_text(path, "presets:\n  paper: {max_e_t_mm: 1.0}\n");
+  EXPECT_THROW(read_suite_thresholds(path), FileError);
+}
+
+TEST(SuiteRunner, StreamingCellGivesOneRowPerFrameAndSharesTheFrames) {
+  SuiteGroup group;
+  group.experiment = "frames";
+  group.setting = 8;
+  group.frames = 2;
+  group.seed = 5;
+  for (const char* preset : {"default", "paper"})
+    group.cells.push_back({"frames", 8, "vlp16", 1.0, 2, preset, 0, 5, true});
+  int frames_seen = 0;
+  const auto rows = run_suite_group(group, group.cells, 0, [&] { ++frames_seen; });
+  EXPECT_EQ(frames_seen, 2);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].frames, 1);
+  EXPECT_EQ(rows[1].frames, 2);
+  EXPECT_EQ(rows[2].preset, "paper");
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.seed, 5u);
+    if (row.success) EXPECT_LT(row.e_t, 0.05) << row.preset << " after " << row.frames;
+    else EXPECT_FALSE(row.reason.empty());
+  }
+  EXPECT_TRUE(rows[3].success) << rows[3].reason;  // paper preset, two frames
+
+  // The same group again gives the same numbers.
+  const auto again = run_suite_group(group, {group.cells[1]}, 1);
+  ASSERT_EQ(again.size(), 2u);
+  EXPECT_EQ(again[1].e_t, rows[3].e_t);
+  EXPECT_EQ(again[1].e_r, rows[3].e_r);
+}
+
+}  // namespace
+}  // namespace l2s::sim
