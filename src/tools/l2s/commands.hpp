@@ -13,6 +13,7 @@ using Runner = std::function<int()>;
 
 void add_calibrate_command(CLI::App& app, Runner& runner);
 void add_info_command(CLI::App& app, Runner& runner);
+void add_params_command(CLI::App& app, Runner& runner);
 void add_evaluate_command(CLI::App& app, Runner& runner);
 void add_simulate_command(CLI::App& app, Runner& runner);
 void add_suite_command(CLI::App& app, Runner& runner);
