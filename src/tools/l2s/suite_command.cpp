@@ -193,7 +193,7 @@ int run_suite(const SuiteCommandOptions& o, bool repeats_given) {
                  groups_done, pending.size());
     return 1;
   }
-  progress.finish();
+  if (total_frames > 0) progress.finish();
 
   // The final file in reading order, whatever the number of jobs.
   std::vector<sim::SuiteRow> rows = sim::read_suite_csv(csv_path).rows;
