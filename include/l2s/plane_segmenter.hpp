@@ -38,7 +38,7 @@ class PlaneSegmenter {
     std::size_t max_samples = 50000;   ///< points scored per hypothesis (random subset), >= 100
     double sample_radius = 0.5;        ///< [m] 2nd/3rd sample points come from this neighbourhood, > 0
     double patch_gap_horizontal = 0.3;  ///< [m] in-plane horizontal gap bridged by a patch (> hole diameter), > 0
-    double patch_gap_vertical = 0.5;   ///< [m] vertical gap bridged (lidar rings are sparse), > 0
+    double patch_gap_vertical = 0.25;  ///< [m] patch grid cell height: rows this close always join, rows 2x apart never (so the ground 0.5 m below stays apart); >= ring spacing at the board (16 beams: to 7 m), > 0
     double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height, 0..1
     double min_height_fraction = 0.15;  ///< patch height must reach this fraction of the board height, 0..1
     std::uint64_t seed = 42;           ///< random generator seed; same seed, same result

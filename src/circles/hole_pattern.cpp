@@ -62,12 +62,27 @@ PatternMatch match_hole_pattern(const std::vector<Eigen::Vector2d>& centers,
     Fit fit;
     std::size_t support;  // edge points on the four circles
   };
+  // Two holes of one pattern are a known distance apart (a side or a diagonal);
+  // pairs that are not prune the search over sets of four.
+  std::vector<double> hole_distances;
+  for (int h = 0; h < 4; ++h)
+    for (int k = h + 1; k < 4; ++k) hole_distances.push_back((holes[h] - holes[k]).norm());
+  std::vector<std::vector<bool>> compatible(n, std::vector<bool>(n, false));
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (const double distance : hole_distances)
+        if (a != b && std::abs((centers[a] - centers[b]).norm() - distance) <= 2.0 * tolerance)
+          compatible[a][b] = true;
+
   std::vector<SetFit> fits;
   double best_miss = std::numeric_limits<double>::infinity();
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b)
       for (int c = b + 1; c < n; ++c)
         for (int d = c + 1; d < n; ++d) {
+          if (!(compatible[a][b] && compatible[a][c] && compatible[a][d] && compatible[b][c] &&
+                compatible[b][d] && compatible[c][d]))
+            continue;
           std::array<int, 4> perm{{a, b, c, d}};  // sorted: next_permutation visits all 24
           std::optional<SetFit> set_fit;
           do {

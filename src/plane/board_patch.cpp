@@ -15,6 +15,7 @@ namespace {
 constexpr int kDirections = 90;   // 1-degree steps for the smallest enclosing rectangle
 constexpr double kBin = 0.05;      // [m] resolution of the board-window search
 constexpr int kMaxBins = 400;      // larger patches are walls: no window search
+constexpr double kSparseCellShare = 0.2;  // cells below this share of the dense cells' count are strays
 
 /// The window position holding most points (summed-area table on kBin bins).
 Eigen::AlignedBox2d best_window(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& size,
@@ -121,14 +122,28 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
     component_points[find_root(parent, static_cast<int>(c))] += cell_count[c];
   const int best = static_cast<int>(std::max_element(component_points.begin(), component_points.end()) -
                                     component_points.begin());
+  // Sparse cells hanging off the patch (the strip where the board plane cuts
+  // the ground, a stand) would inflate its extent; the board's own cells hold
+  // far more points than they do.
+  std::vector<int> best_counts;
   for (std::size_t c = 0; c < cell_keys.size(); ++c)
-    if (find_root(parent, static_cast<int>(c)) == best) patch.cells.insert(cell_keys[c]);
-  patch.points = component_points[best];
+    if (find_root(parent, static_cast<int>(c)) == best) best_counts.push_back(cell_count[c]);
+  // Reference: the densest tenth of the cells (a long stray strip can hold
+  // more cells than the board, so the median is not safe).
+  const std::size_t dense = best_counts.size() * 9 / 10;
+  std::nth_element(best_counts.begin(), best_counts.begin() + dense, best_counts.end());
+  const double min_cell_points = kSparseCellShare * best_counts[dense];
+  std::vector<bool> kept_cell(cell_keys.size(), false);
+  for (std::size_t c = 0; c < cell_keys.size(); ++c)
+    if (find_root(parent, static_cast<int>(c)) == best && cell_count[c] >= min_cell_points) {
+      kept_cell[c] = true;
+      patch.cells.insert(cell_keys[c]);
+    }
 
   std::vector<Eigen::Vector2d> members;
-  members.reserve(patch.points);
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (find_root(parent, cell_of_point[i]) == best) members.push_back(uv[i]);
+    if (kept_cell[cell_of_point[i]]) members.push_back(uv[i]);
+  patch.points = members.size();
   std::size_t in_window = 0;
   const Eigen::AlignedBox2d box = best_window(members, window, &in_window);
   patch.box = Eigen::AlignedBox2d();
