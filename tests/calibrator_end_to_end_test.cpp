@@ -54,3 +54,35 @@ INSTANTIATE_TEST_SUITE_P(PaperSettings, CalibratorEndToEnd, ::testing::Range(1, 
                          [](const auto& info) { return "Setting" + std::to_string(info.param); });
 
 }  // namespace
+
+namespace {
+
+// Dense lidars on the settings where the board's top holes reach past the
+// HDL-64E's +2 deg top beam and the board plane meets the ground: the plane
+// must still be the board, and the clipped holes still form the pattern.
+class CalibratorDenseLidar : public ::testing::TestWithParam<int> {};
+
+TEST_P(CalibratorDenseLidar, Hdl64FindsTheBoardAndCalibrates) {
+  auto config = l2s::sim::SimulationConfig::paper(GetParam(), "hdl64");
+  config.frames = 5;
+  config.seed = 2000 + GetParam();
+  const l2s::sim::DatasetSimulator simulator(config);
+  l2s::Calibrator calibrator(simulator.cameras(), config.target, l2s::Calibrator::Params::preset("default"));
+  for (int i = 0; i < config.frames; ++i) {
+    const auto frame = simulator.frame(i);
+    calibrator.add(frame.lidar, frame.left, frame.right);
+  }
+  const auto result = calibrator.result();
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.lidar_frames, config.frames);
+  const auto error = l2s::pose_error(result.T_lidar_camera, simulator.T_lidar_camera());
+  std::printf("hdl64 setting %d: e_t %.1f mm e_r %.3f deg\n", GetParam(), error.translation * 1e3,
+              error.rotation * 180 / M_PI);
+  EXPECT_LE(error.translation, 0.02);
+  EXPECT_LE(error.rotation * 180 / M_PI, 0.3);
+}
+
+INSTANTIATE_TEST_SUITE_P(ClippedBoards, CalibratorDenseLidar, ::testing::Values(3, 6),
+                         [](const auto& info) { return "Setting" + std::to_string(info.param); });
+
+}  // namespace

@@ -33,6 +33,15 @@ struct Calibrator::Impl {
   CenterAccumulator camera_centers;
   std::vector<FrameReport> frames;
 
+  // Names the frame, accumulates what its branches found, keeps its report.
+  FrameReport record(FrameReport report, const std::string& id) {
+    report.id = id.empty() ? std::to_string(frames.size()) : id;
+    if (report.lidar.found) lidar_centers.add(report.lidar.centers);
+    if (report.camera.found) camera_centers.add(report.camera.centers);
+    frames.push_back(report);
+    return report;
+  }
+
   Impl(StereoCamera c, Target t, Params p)
       : cameras(std::move(c)),
         target(t),
@@ -65,7 +74,6 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   };
 
   FrameReport report;
-  report.id = id.empty() ? std::to_string(impl_->frames.size()) : id;
   if (impl.params.parallel_branches) {
     // The branches share nothing but const inputs; the camera side is the slower one.
     auto camera = std::async(std::launch::async, camera_branch);
@@ -76,11 +84,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
     report.camera = camera_branch();
   }
   report.milliseconds = milliseconds_since(start);
-
-  if (report.lidar.found) impl_->lidar_centers.add(report.lidar.centers);
-  if (report.camera.found) impl_->camera_centers.add(report.camera.centers);
-  impl_->frames.push_back(report);
-  return report;
+  return impl_->record(std::move(report), id);
 }
 
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
@@ -90,14 +94,10 @@ BranchReport Calibrator::camera_branch(const Image& left, const Image& right) co
 
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
-  report.id = id.empty() ? std::to_string(impl_->frames.size()) : id;
   report.lidar = timed([&] { return detail::run_lidar_branch(lidar, impl_->target, impl_->params); });
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
-  if (report.lidar.found) impl_->lidar_centers.add(report.lidar.centers);
-  if (report.camera.found) impl_->camera_centers.add(report.camera.centers);
-  impl_->frames.push_back(report);
-  return report;
+  return impl_->record(std::move(report), id);
 }
 
 Calibrator::Result Calibrator::result() const {
