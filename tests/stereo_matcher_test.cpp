@@ -69,6 +69,28 @@ TEST(StereoMatcher, HalfResolutionAndRoiStayAccurate) {
   }
 }
 
+TEST(StereoMatcher, RowDownscaleKeepsTheFullResolutionDepth) {
+  const StereoCamera camera = test::make_stereo_camera();
+  StereoMatcher::Params params;
+  params.row_downscale = 0.5;
+  const StereoMatcher::Result result = StereoMatcher(params).match(wall_pair().left, wall_pair().right, camera);
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.disparity.width, 1280);
+  EXPECT_EQ(result.disparity.height, 480);
+  EXPECT_DOUBLE_EQ(result.disparity.scale, 1.0);
+  EXPECT_DOUBLE_EQ(result.disparity.row_scale, 0.5);
+  EXPECT_GT(result.cloud.size(), 0.7 * 1280 * 480);
+  // Columns keep their resolution, so the disparity (and depth) does too:
+  // the same bound as at full resolution, not the half-resolution one.
+  EXPECT_LT(median_abs_depth_error(result.cloud, 3.0), 0.004);
+  // Each point projects back onto its pixel; a cell spans two rows.
+  for (std::size_t k = 0; k < result.cloud.size(); k += 997) {
+    const Eigen::Vector2d u = camera.left.project(result.cloud.points[k]);
+    EXPECT_LT(std::abs(u.x() - result.cloud.pixels[k].x()), 0.51);
+    EXPECT_LT(std::abs(u.y() - result.cloud.pixels[k].y()), 0.51);
+  }
+}
+
 TEST(StereoMatcher, DepthRangeOutsideSceneGivesReason) {
   const StereoCamera camera = test::make_stereo_camera();
   StereoMatcher::Params params;

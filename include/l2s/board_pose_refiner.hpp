@@ -19,7 +19,7 @@ class BoardPoseRefiner {
     int samples_per_rim = 360;     ///< points on each rim circle (front and back); ~1 per px of rim at 3 m, 16..2000
     double search_range_px = 6.0;  ///< [px] first round's edge search along the rim normal, +-, 1..30
     double final_search_range_px = 2.0;  ///< [px] the range halves each round down to this, so a nearby parallel edge (e.g. the other rim) cannot capture samples once aligned, 1..search_range_px
-    double search_step_px = 0.5;   ///< [px] spacing of the gradient samples on the search line, 0.1..2
+    double search_step_px = 0.25;  ///< [px] spacing of the gradient samples on the search line; the 3-point parabolic peak fit is biased by a fraction of the spacing (0.5 px left ~0.5 mm of depth per hole at 3.5 m), 0.1..2
     double min_rim_separation_px = 3.0;  ///< [px] back-rim samples closer than this to the front rim's projection are dropped: the two edges (hole wall between) blend and bias the peak, 0..10
     double min_edge_strength = 6.0;  ///< [gray levels / px] weakest gradient accepted as the rim, >= 0
     double huber_px = 0.5;         ///< [px] Huber threshold of the robust weights, > 0
@@ -28,6 +28,8 @@ class BoardPoseRefiner {
     double image_margin_px = 4.0;  ///< [px] samples closer than this to the border are skipped, >= 0
     double converged_rotation = 2e-5;     ///< [rad] a round moving less than this ...
     double converged_translation = 2e-5;  ///< [m] ... and this has converged
+    double converged_step_rms_fraction = 0.25;  ///< also converged once a round (final search range) moves no rim sample by more than this fraction of the edge rms, with the step shrinking; 0 disables, 0..1
+    double min_edge_fraction = 0.8;  ///< ... and only when at least this fraction of the searched rim samples found a strong edge (wall texture alone gives far fewer), 0..1
     bool use_right_image = true;   ///< also fit the right image (needed for depth)
     int min_samples = 40;          ///< fewer edge samples than this fails, >= 7
     double max_rms_px = 1.0;       ///< [px] converged only if the final rms is below this, > 0
@@ -44,6 +46,8 @@ class BoardPoseRefiner {
     double rms_px = 0.0;      ///< [px] rms normal distance of the used samples, last round
     int samples = 0;          ///< edge samples used in the last round (both images)
     int iterations = 0;       ///< search-and-fit rounds run
+    double edge_fraction = 0.0;  ///< share of the rim samples searched when the sample set was last chosen that found a strong edge (last round)
+    double last_step_px = 0.0;   ///< [px] largest image motion of a used sample in the last round
   };
 
   // `Stage(Params = {})` does not compile with GCC while Params has default

@@ -23,7 +23,7 @@ class CircleFinder {
     double inlier_threshold = 0.02;   ///< [m] | |q - c| - r | for a point to support a circle, > 0
     int min_circle_points = 3;        ///< fewest points on a circle candidate (paper: 3), >= 2
     int max_iterations = 2000;        ///< point pairs tried; every pair when there are fewer, >= 1
-    int max_candidates = 32;          ///< circle candidates kept (best first), >= 4; dense lidars and camera edges need many
+    int max_candidates = 16;          ///< circle candidates kept (best first), >= 4; dense lidars need more (default preset: 32)
     double spacing_tolerance = 0.03;  ///< [m] max distance of a centre from the fitted rigid pattern, > 0
     bool project_along_rays = true;   ///< move points onto the plane along their viewing ray (false: orthogonally, paper)
     bool joint_fit = true;            ///< refine the four holes as one rigid pattern (false: independent circles, paper)

@@ -26,9 +26,20 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   // The board is within a few metres of both sensors; far returns only slow the search.
   params.lidar_pass_through.max_range = 10.0;
   params.camera_pass_through.max_range = 10.0;
-  // Half-resolution SGM would be ~5x faster, but fragments the board plane of
-  // boards beyond ~3.5 m (settings 3 and 5 lose half their frames): not yet.
-  if (name == "default") return params;
+  // SGM on every other row: half the cost of the matching and of every later
+  // stage, for a 10 Hz sensor. Rows only: at half resolution in both axes
+  // SGBM's sub-pixel disparity locks to whole half-resolution pixels, so a
+  // board at 3.5 m becomes terraces ~13 cm deep with a +-2 cm sawtooth, and
+  // the 1 cm RANSAC consensus cuts it into board-sized strips (settings 3 and
+  // 5 lost half their frames). Averaging rows keeps the disparity resolution
+  // and lowers the noise of the board plane (rms 6 vs 10 mm at 3.6 m).
+  if (name == "default") {
+    params.stereo.row_downscale = 0.5;
+    // A 64-beam sweep gives dozens of edge points per hole, hence many circle
+    // candidates; 16 lost the true ones when a hole is cut by the top beam.
+    params.lidar_circles.max_candidates = 32;
+    return params;
+  }
   if (name != "paper") throw ParamError("preset", "unknown preset '" + name + "' (expected default or paper)");
 
   // Sec. IV-B: delta_plane 1 cm, delta_inliers 5 cm (lidar) / 10 cm (camera),

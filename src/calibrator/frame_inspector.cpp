@@ -246,9 +246,9 @@ std::string describe(const CameraInspection& in, const Calibrator::Params& param
     const int d_min = std::max(1, p.min_disparity), d_max = p.min_disparity + p.num_disparities;
     append(out,
            "                   [stereo: min_disparity %d px, num_disparities %d px (depths "
-           "%.2f..%.2f m), block_size %d, downscale %.2f, depth %.2f..%.2f m]\n",
+           "%.2f..%.2f m), block_size %d, downscale %.2f, row_downscale %.2f, depth %.2f..%.2f m]\n",
            p.min_disparity, p.num_disparities, fxb / d_max, fxb / d_min, p.block_size, p.downscale,
-           p.min_depth, p.max_depth);
+           p.row_downscale, p.min_depth, p.max_depth);
   }
   describe_pass_through(out, in.pass_through, in.stereo ? in.stereo->cloud.size() : 0,
                         params.camera_pass_through, "camera_pass_through");

@@ -77,6 +77,7 @@ void visit(V& v, StereoMatcher::Params& p) {
   v.field("speckle_range", p.speckle_range);
   v.choice("mode", p.mode, {{M::Sgbm5, "sgbm5"}, {M::Hh8, "hh8"}, {M::Sgbm3Way, "sgbm3way"}, {M::Hh4, "hh4"}});
   v.field("downscale", p.downscale);
+  v.field("row_downscale", p.row_downscale);
   v.section("roi", [&](V& roi) {
     roi.field("x", p.roi.x);
     roi.field("y", p.roi.y);
@@ -116,6 +117,8 @@ void visit(V& v, BoardPoseRefiner::Params& p) {
   v.field("image_margin_px", p.image_margin_px);
   v.field("converged_rotation", p.converged_rotation);
   v.field("converged_translation", p.converged_translation);
+  v.field("converged_step_rms_fraction", p.converged_step_rms_fraction);
+  v.field("min_edge_fraction", p.min_edge_fraction);
   v.field("use_right_image", p.use_right_image);
   v.field("min_samples", p.min_samples);
   v.field("max_rms_px", p.max_rms_px);

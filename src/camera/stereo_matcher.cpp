@@ -48,6 +48,7 @@ void StereoMatcher::Params::validate() const {
   if (speckle_window_size < 0) throw ParamError("speckle_window_size", "must be >= 0");
   if (speckle_range < 0) throw ParamError("speckle_range", "must be >= 0");
   if (!(downscale > 0.0 && downscale <= 1.0)) throw ParamError("downscale", "must be in (0, 1]");
+  if (!(row_downscale > 0.0 && row_downscale <= 1.0)) throw ParamError("row_downscale", "must be in (0, 1]");
   if (roi.x < 0 || roi.y < 0 || roi.width < 0 || roi.height < 0)
     throw ParamError("roi", "must have non-negative origin and size");
   if (!(min_depth > 0.0)) throw ParamError("min_depth", "must be > 0");
@@ -87,11 +88,16 @@ StereoMatcher::Result StereoMatcher::match(const Image& left, const Image& right
   const int crop_x0 = std::max(0, roi.x - max_disparity);
   const cv::Rect crop(crop_x0, roi.y, roi.x + roi.width - crop_x0, roi.height);
 
+  // Columns and rows scale apart: the disparity is measured along the rows,
+  // and SGBM's sub-pixel step locks to whole pixels of the matched images, so
+  // coarser columns make coarser depth steps. Averaging rows (row_downscale)
+  // costs no depth resolution.
   const double s = params_.downscale;
+  const double s_rows = s * params_.row_downscale;
   cv::Mat l = left_gray(crop), r = right_gray(crop);
-  if (s < 1.0) {
-    cv::resize(l, l, cv::Size(), s, s, cv::INTER_AREA);
-    cv::resize(r, r, cv::Size(), s, s, cv::INTER_AREA);
+  if (s < 1.0 || s_rows < 1.0) {
+    cv::resize(l, l, cv::Size(), s, s_rows, cv::INTER_AREA);
+    cv::resize(r, r, cv::Size(), s, s_rows, cv::INTER_AREA);
   }
   const int min_d = static_cast<int>(std::floor(params_.min_disparity * s));
   const int num_d = ((static_cast<int>(std::ceil(params_.num_disparities * s)) + 15) / 16) * 16;
@@ -116,6 +122,7 @@ StereoMatcher::Result StereoMatcher::match(const Image& left, const Image& right
   map.x0 = roi.x;
   map.y0 = roi.y;
   map.scale = s;
+  map.row_scale = s_rows;
   map.values.assign(static_cast<std::size_t>(map.width) * map.height,
                     std::numeric_limits<float>::quiet_NaN());
   const float to_full = static_cast<float>(1.0 / (16.0 * s));  // fixed point 1/16 px, then rescale
@@ -136,7 +143,7 @@ StereoMatcher::Result StereoMatcher::match(const Image& left, const Image& right
   cloud.points.reserve(map.values.size() / (params_.stride * params_.stride));
   cloud.pixels.reserve(cloud.points.capacity());
   for (int j = 0; j < map.height; j += params_.stride) {
-    const double v = map.y0 + (j + 0.5) / s - 0.5;
+    const double v = map.y0 + (j + 0.5) / s_rows - 0.5;
     for (int i = 0; i < map.width; i += params_.stride) {
       const float d = map.at(i, j);
       if (!std::isfinite(d)) continue;

@@ -124,7 +124,8 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
                                     component_points.begin());
   // Sparse cells hanging off the patch (the strip where the board plane cuts
   // the ground, a stand) would inflate its extent; the board's own cells hold
-  // far more points than they do.
+  // far more points than they do. They stay in the patch (cells beside a hole
+  // are sparse too, and their points are board points) but not in its extent.
   std::vector<int> best_counts;
   for (std::size_t c = 0; c < cell_keys.size(); ++c)
     if (find_root(parent, static_cast<int>(c)) == best) best_counts.push_back(cell_count[c]);
@@ -133,17 +134,17 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
   const std::size_t dense = best_counts.size() * 9 / 10;
   std::nth_element(best_counts.begin(), best_counts.begin() + dense, best_counts.end());
   const double min_cell_points = kSparseCellShare * best_counts[dense];
-  std::vector<bool> kept_cell(cell_keys.size(), false);
-  for (std::size_t c = 0; c < cell_keys.size(); ++c)
-    if (find_root(parent, static_cast<int>(c)) == best && cell_count[c] >= min_cell_points) {
-      kept_cell[c] = true;
-      patch.cells.insert(cell_keys[c]);
-    }
+  std::vector<bool> dense_cell(cell_keys.size(), false);
+  for (std::size_t c = 0; c < cell_keys.size(); ++c) {
+    if (find_root(parent, static_cast<int>(c)) != best) continue;
+    patch.cells.insert(cell_keys[c]);
+    dense_cell[c] = cell_count[c] >= min_cell_points;
+  }
+  patch.points = component_points[best];
 
   std::vector<Eigen::Vector2d> members;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (kept_cell[cell_of_point[i]]) members.push_back(uv[i]);
-  patch.points = members.size();
+    if (dense_cell[cell_of_point[i]]) members.push_back(uv[i]);
   std::size_t in_window = 0;
   const Eigen::AlignedBox2d box = best_window(members, window, &in_window);
   patch.box = Eigen::AlignedBox2d();

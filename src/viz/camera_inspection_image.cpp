@@ -81,14 +81,16 @@ Image render_camera_inspection(const Image& left, const CameraInspection& in,
   if (in.plane) {
     // A mask first, so that each board pixel is tinted once; a point matched at
     // a reduced scale (or with a stride) covers a block of pixels.
-    int block = 1;
-    if (in.stereo && in.stereo->disparity.scale > 0.0)
-      block = std::max(1, static_cast<int>(std::lround(1.0 / in.stereo->disparity.scale)));
+    int block_w = 1, block_h = 1;
+    if (in.stereo && in.stereo->disparity.scale > 0.0 && in.stereo->disparity.row_scale > 0.0) {
+      block_w = std::max(1, static_cast<int>(std::lround(1.0 / in.stereo->disparity.scale)));
+      block_h = std::max(1, static_cast<int>(std::lround(1.0 / in.stereo->disparity.row_scale)));
+    }
     cv::Mat mask(canvas.rows, canvas.cols, CV_8UC1, cv::Scalar(0));
     for (const std::size_t i : in.plane->inliers) {
       const Eigen::Vector2i& px = in.cloud.pixels[i];
       if (!inside(px)) continue;
-      cv::rectangle(mask, cv::Rect(px.x() - block / 2, px.y() - block / 2, block, block),
+      cv::rectangle(mask, cv::Rect(px.x() - block_w / 2, px.y() - block_h / 2, block_w, block_h),
                     cv::Scalar(255), cv::FILLED);
     }
     cv::Mat tinted = canvas * 0.65 + cv::Mat(canvas.size(), CV_8UC3, kBoard) * 0.35;
@@ -194,6 +196,10 @@ Image render_disparity(const CameraInspection& inspection) {
   cv::applyColorMap(gray, colour, cv::COLORMAP_JET);  // large disparity (near) is red
   cv::Mat out(map.height, map.width, CV_8UC3, cv::Scalar(0, 0, 0));
   colour.copyTo(out, valid);
+  if (map.row_scale > 0.0 && map.row_scale != map.scale) {  // rows matched coarser: restore the aspect
+    const int rows = std::max(1, static_cast<int>(std::lround(map.height * map.scale / map.row_scale)));
+    cv::resize(out, out, cv::Size(map.width, rows), 0, 0, cv::INTER_NEAREST);
+  }
   if (std::isfinite(lo)) {
     char line[160];
     std::snprintf(line, sizeof(line),
