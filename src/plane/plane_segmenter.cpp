@@ -143,6 +143,14 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
     const Eigen::Vector2d window(tol * std::max(target.board_width, target.board_height),
                                  tol * std::min(target.board_width, target.board_height));
     const detail::Patch patch = detail::largest_patch(grid, on_plane, window, kWindowShare);
+    // Patch membership of a point never changes for this candidate, but the
+    // refit passes below ask again; a dense stereo cloud makes that the
+    // segmenter's hot spot, so each point is looked up once.
+    std::vector<signed char> membership(points.size(), -1);
+    const auto in_patch = [&](std::size_t i) {
+      if (membership[i] < 0) membership[i] = detail::in_patch(grid, patch, points[i]) ? 1 : 0;
+      return membership[i] == 1;
+    };
 
     // One pass over the full cloud: support, and the consensus inside the patch.
     PlaneCandidate candidate;
@@ -153,7 +161,7 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
     for (std::size_t i : finite) {
       if (std::abs(plane.signedDistance(points[i])) > params_.distance_threshold) continue;
       ++candidate.support;
-      if (detail::in_patch(grid, patch, points[i])) patch_consensus.push_back(i);
+      if (in_patch(i)) patch_consensus.push_back(i);
     }
     candidate.patch_points = patch_consensus.size();
     if (candidate.support < params_.min_support) {
@@ -182,8 +190,7 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
     for (int pass = 0; pass < 2; ++pass) {
       std::vector<std::size_t> wide;
       for (std::size_t i : finite)
-        if (std::abs(refit.signedDistance(points[i])) <= params_.inlier_threshold &&
-            detail::in_patch(grid, patch, points[i]))
+        if (std::abs(refit.signedDistance(points[i])) <= params_.inlier_threshold && in_patch(i))
           wide.push_back(i);
       if (wide.size() < 3) break;
       refit = detail::facing_origin(detail::fit_plane(points, wide));
@@ -197,7 +204,7 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
     result.rms = std::sqrt(sum_sq / static_cast<double>(patch_consensus.size()));
     for (std::size_t i = 0; i < points.size(); ++i)
       if (points[i].allFinite() && std::abs(refit.signedDistance(points[i])) <= params_.inlier_threshold &&
-          detail::in_patch(grid, patch, points[i]))
+          in_patch(i))
         result.inliers.push_back(i);
     result.found = true;
     return result;
