@@ -61,6 +61,19 @@ SuiteRow sample_row() {
   return row;
 }
 
+// The row of a cell that ran, with sample_row()'s outcome.
+SuiteRow finished(const SuiteCell& cell) {
+  const SuiteRow sample = sample_row();
+  SuiteRow row = SuiteRow::of(cell);
+  row.success = sample.success;
+  row.e_t = sample.e_t;
+  row.e_r = sample.e_r;
+  row.lidar_frames = sample.lidar_frames;
+  row.camera_frames = sample.camera_frames;
+  row.wall_s = sample.wall_s;
+  return row;
+}
+
 TEST(SuitePlan, CountsCellsPerExperiment) {
   const int r = 3;
   const auto frames = make_suite_plan(options_for("frames", r));
@@ -138,16 +151,7 @@ TEST(SuiteCsv, ResumeSkipsFinishedCellsAndDropsPartialOnes) {
   const auto plan = make_suite_plan(options_for("quick", 1));  // 3 groups x 2 presets, 1 row each
   std::vector<SuiteRow> rows;
   for (const auto& cell : plan[0].cells) {
-    SuiteRow row = sample_row();
-    row.experiment = cell.experiment;
-    row.setting = cell.setting;
-    row.lidar = cell.lidar;
-    row.noise_k = cell.noise_k;
-    row.frames = cell.frames;
-    row.preset = cell.preset;
-    row.repetition = cell.repetition;
-    row.seed = cell.seed;
-    rows.push_back(row);
+    rows.push_back(finished(cell));
   }
   const std::string path = temp_file("results.csv");
   write_suite_csv(path, rows);
@@ -170,13 +174,7 @@ TEST(SuiteCsv, ResumeSkipsFinishedCellsAndDropsPartialOnes) {
   const SuiteCell& cell = frames_plan[0].cells[0];
   std::vector<SuiteRow> partial;
   for (int n = 1; n <= 5; ++n) {
-    SuiteRow row = sample_row();
-    row.experiment = cell.experiment;
-    row.setting = cell.setting;
-    row.noise_k = cell.noise_k;
-    row.preset = cell.preset;
-    row.repetition = cell.repetition;
-    row.seed = cell.seed;
+    SuiteRow row = finished(cell);
     row.frames = n;
     partial.push_back(row);
   }

@@ -8,6 +8,7 @@
 #include "io/yaml_helpers.hpp"
 
 #include <l2s/center_accumulator.hpp>
+#include <l2s/pose.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -16,14 +17,6 @@ namespace l2s::io {
 namespace {
 
 using yaml::format_number;
-
-// Roll, pitch, yaw with R = Rz(yaw) * Ry(pitch) * Rx(roll), as ROS tf uses them.
-Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
-  return {roll, pitch, yaw};
-}
 
 void emit_pose_details(YAML::Emitter& out, const std::string& name, const Eigen::Isometry3d& T) {
   const Eigen::Quaterniond q(T.rotation());

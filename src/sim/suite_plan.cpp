@@ -9,6 +9,7 @@
 #include "sim/random.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace l2s::sim {
@@ -60,14 +61,33 @@ void SuiteOptions::validate() const {
   if (repeats < 1 || repeats > 10000) throw ParamError("repeats", "must be 1..10000");
 }
 
-std::string SuiteCell::key() const {
-  return experiment + "/" + std::to_string(setting) + "/" + lidar + "/" + format_k(noise_k) + "/" + preset +
-         "/" + std::to_string(repetition);
+namespace {
+
+// One spelling of a cell's identity, for cells and for the rows they produce.
+template <class CellOrRow>
+std::string key_of(const CellOrRow& c) {
+  return c.experiment + "/" + std::to_string(c.setting) + "/" + c.lidar + "/" + format_k(c.noise_k) + "/" +
+         c.preset + "/" + std::to_string(c.repetition);
 }
 
-std::string SuiteRow::cell_key() const {
-  return experiment + "/" + std::to_string(setting) + "/" + lidar + "/" + format_k(noise_k) + "/" + preset +
-         "/" + std::to_string(repetition);
+}  // namespace
+
+std::string SuiteCell::key() const { return key_of(*this); }
+
+std::string SuiteRow::cell_key() const { return key_of(*this); }
+
+SuiteRow SuiteRow::of(const SuiteCell& cell) {
+  SuiteRow row;
+  row.experiment = cell.experiment;
+  row.setting = cell.setting;
+  row.lidar = cell.lidar;
+  row.noise_k = cell.noise_k;
+  row.frames = cell.frames;
+  row.preset = cell.preset;
+  row.seed = cell.seed;
+  row.repetition = cell.repetition;
+  row.e_t = row.e_r = std::numeric_limits<double>::quiet_NaN();
+  return row;
 }
 
 std::uint64_t suite_seed(std::uint64_t base_seed, const std::string& experiment, int setting,

@@ -25,23 +25,9 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-SuiteRow row_of(const SuiteCell& cell) {
-  SuiteRow row;
-  row.experiment = cell.experiment;
-  row.setting = cell.setting;
-  row.lidar = cell.lidar;
-  row.noise_k = cell.noise_k;
-  row.frames = cell.frames;
-  row.preset = cell.preset;
-  row.seed = cell.seed;
-  row.repetition = cell.repetition;
-  row.e_t = row.e_r = std::numeric_limits<double>::quiet_NaN();
-  return row;
-}
-
 SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
                   const Eigen::Isometry3d& T_true, double wall_s) {
-  SuiteRow row = row_of(cell);
+  SuiteRow row = SuiteRow::of(cell);
   row.frames = result.frames_added;
   row.success = result.found;
   row.reason = result.reason;
@@ -136,7 +122,7 @@ std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector
     if (const auto failed = failures.find(cell.lidar); failed != failures.end()) {
       // No data, so no evaluation: the cell fails at every frame count it would have had.
       for (int n = cell.every_frame ? 1 : cell.frames; n <= cell.frames; ++n) {
-        SuiteRow row = row_of(cell);
+        SuiteRow row = SuiteRow::of(cell);
         row.frames = n;
         row.reason = failed->second;
         rows.push_back(row);

@@ -82,6 +82,9 @@ struct SuiteRow {
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;
+
+  /// A cell's row before any evaluation: its identity, no outcome, NaN errors.
+  static SuiteRow of(const SuiteCell& cell);
 };
 
 /// Simulates a group's frames once and calibrates each of `cells` (a subset of

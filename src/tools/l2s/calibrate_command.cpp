@@ -11,6 +11,7 @@
 #include <l2s/io/image_io.hpp>
 #include <l2s/metrics.hpp>
 #include <l2s/overlay.hpp>
+#include <l2s/pose.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -36,12 +37,9 @@ struct CalibrateOptions {
 
 void print_pose(const char* label, const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation();
-  const Eigen::Matrix3d& R = T.rotation();
-  const double roll = std::atan2(R(2, 1), R(2, 2));
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
+  const Eigen::Vector3d rpy = roll_pitch_yaw(T.rotation());
   std::printf("%-10s t = (%8.4f, %8.4f, %8.4f) m   rpy = (%8.4f, %8.4f, %8.4f) rad\n", label, t.x(),
-              t.y(), t.z(), roll, pitch, yaw);
+              t.y(), t.z(), rpy[0], rpy[1], rpy[2]);
 }
 
 void print_frame_failure(const FrameReport& frame) {

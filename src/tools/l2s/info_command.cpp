@@ -4,6 +4,7 @@
 
 #include <l2s/io/dataset.hpp>
 #include <l2s/metrics.hpp>
+#include <l2s/pose.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -43,9 +44,9 @@ int print_info(const std::string& folder, bool load_all) {
   }
   if (const auto truth = dataset.ground_truth()) {
     const Eigen::Vector3d t = truth->translation();
-    const Eigen::Vector3d ypr = truth->rotation().eulerAngles(2, 1, 0);
-    std::printf("truth     T_lidar_camera t = (%.4f, %.4f, %.4f) m, yaw/pitch/roll = (%.4f, %.4f, %.4f) rad\n",
-                t.x(), t.y(), t.z(), ypr[0], ypr[1], ypr[2]);
+    const Eigen::Vector3d rpy = roll_pitch_yaw(truth->rotation());
+    std::printf("truth     T_lidar_camera t = (%.4f, %.4f, %.4f) m, roll/pitch/yaw = (%.4f, %.4f, %.4f) rad\n",
+                t.x(), t.y(), t.z(), rpy[0], rpy[1], rpy[2]);
   }
   return 0;
 }
