@@ -36,10 +36,19 @@ struct CameraInfo {
                           double cy, double baseline_m = 0.0);
 };
 
-/// A rectified stereo pair; the left camera's optical frame is "the camera frame".
+/// Which images a camera delivers (DATASET.md, dataset.yaml `images:`).
+enum class ImageKind {
+  Rectified,  ///< already rectified: P is the model; the camera frame is the rectified frame
+  Raw,        ///< as the driver publishes them: K and D apply, R and P rectify; the camera frame is K's
+};
+
+/// A stereo pair; the left camera's optical frame is "the camera frame". With
+/// raw images that is the physical left camera of K and D, not the rectified
+/// frame (p_rect = R_left * p_camera).
 struct StereoCamera {
   CameraInfo left;
   CameraInfo right;
+  ImageKind images = ImageKind::Rectified;  ///< what the image folders hold
 
   /// [m] B = -P_right[0][3] / fx_right (DATASET.md).
   double baseline() const { return -right.projection_matrix(0, 3) / right.fx(); }
