@@ -56,7 +56,8 @@ TEST_F(FrameInspector, FindsTheBoardOnBothSensorsWithTheCalibratorsCentres) {
   // Every stage ran and kept its result.
   ASSERT_TRUE(lidar.pass_through && lidar.plane && lidar.discontinuities && lidar.circles);
   EXPECT_TRUE(lidar.plane->found);
-  EXPECT_EQ(lidar.plane->inliers.size(), lidar.report.plane_inliers);
+  ASSERT_GE(lidar.candidate, 0);
+  EXPECT_EQ(lidar.plane->candidates[lidar.candidate].inliers.size(), lidar.report.plane_inliers);
   EXPECT_EQ(lidar.discontinuities->edges.size(), lidar.report.edge_points);
   EXPECT_EQ(lidar.cloud.size(), lidar.report.input_points);
   ASSERT_TRUE(camera.stereo && camera.pass_through && camera.plane && camera.edges &&
@@ -90,7 +91,8 @@ TEST_F(FrameInspector, FindsTheBoardOnBothSensorsWithTheCalibratorsCentres) {
   const std::string lidar_text = describe(lidar, params);
   const std::string camera_text = describe(camera, params, simulator_->cameras());
   EXPECT_NE(lidar_text.find("lidar   FOUND"), std::string::npos) << lidar_text;
-  EXPECT_NE(lidar_text.find("min_discontinuity 0.50 m"), std::string::npos) << lidar_text;
+  EXPECT_NE(lidar_text.find("min_discontinuity 0.15 m"), std::string::npos) << lidar_text;
+  EXPECT_NE(lidar_text.find("CHOSEN"), std::string::npos) << lidar_text;
   EXPECT_NE(lidar_text.find("TL  ("), std::string::npos) << lidar_text;
   EXPECT_NE(camera_text.find("camera  FOUND"), std::string::npos) << camera_text;
   EXPECT_NE(camera_text.find("sobel_threshold 128"), std::string::npos) << camera_text;
@@ -114,7 +116,7 @@ TEST_F(FrameInspector, SweepWithoutTheBoardNamesTheFailingStage) {
   for (const auto& c : found.report.centers) board_centre += c / 4.0;
 
   // Delete the board's returns: near its plane and within a board-sized ball.
-  const Plane& board = found.plane->plane;
+  const Plane& board = found.plane->candidates[found.candidate].plane;
   LidarCloud sweep;
   for (std::size_t i = 0; i < frame_->lidar.size(); ++i) {
     const Eigen::Vector3d& p = frame_->lidar.points[i];

@@ -54,10 +54,11 @@ TEST(PlaneSegmenter, FindsTiltedBoardAmongWallAndGround) {
   EXPECT_GT(board_share(points, result.inliers, scene), 0.98);
   // The wall is bigger and vertical too: it must have been seen and rejected.
   ASSERT_GE(result.candidates.size(), 2u);
-  EXPECT_FALSE(result.candidates.front().accepted);
+  EXPECT_FALSE(result.candidates.front().plausible);
   EXPECT_NE(result.candidates.front().reason.find("larger than the board"), std::string::npos)
       << result.candidates.front().reason;
-  EXPECT_TRUE(result.candidates.back().accepted);
+  ASSERT_FALSE(result.ranking.empty());
+  EXPECT_EQ(result.inliers, result.candidates[result.ranking.front()].inliers);
   EXPECT_LT(result.rms, 0.012);
 }
 
@@ -109,7 +110,7 @@ TEST(PlaneSegmenter, ExplainsWhyThereIsNoBoard) {
   EXPECT_FALSE(result.reason.empty());
   ASSERT_FALSE(result.candidates.empty());
   for (const PlaneCandidate& c : result.candidates) {
-    EXPECT_FALSE(c.accepted);
+    EXPECT_FALSE(c.plausible);
     EXPECT_FALSE(c.reason.empty());
   }
 }

@@ -5,6 +5,7 @@
 // calibration can run live; result() is available at any point.
 
 #include <l2s/board_pose_refiner.hpp>
+#include <l2s/board_verifier.hpp>
 #include <l2s/camera.hpp>
 #include <l2s/center_accumulator.hpp>
 #include <l2s/circle_finder.hpp>
@@ -35,6 +36,8 @@ struct BranchReport {
   std::size_t plane_inliers = 0;  ///< board-plane points
   std::size_t edge_points = 0;    ///< edge points given to the circle finder
   double fit_rms = 0.0;           ///< [m] circle finder's fit rms (lidar) / [px] refiner rms (camera)
+  double hole_radius = 0.0;       ///< [m] apparent hole radius of the rim fit (real lidars see holes smaller than they are)
+  int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
   double milliseconds = 0.0;      ///< [ms] wall time of the branch
 };
@@ -58,12 +61,14 @@ class Calibrator {
     PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
     DiscontinuityFilter::Params discontinuity;
     CircleFinder::Params lidar_circles;
+    BoardVerifier::Params lidar_verifier;  ///< which board-sized plane is the board (holes seen through, outline clear)
     // Camera branch: stereo, pass-through, plane, Sobel edges, circles, rim refinement.
     StereoMatcher::Params stereo;
     PassThroughFilter::Params camera_pass_through;
     PlaneSegmenter::Params camera_plane = PlaneSegmenter::Params::stereo();
     EdgeFilter::Params edges;
     CircleFinder::Params camera_circles;
+    BoardVerifier::Params camera_verifier;
     bool refine_camera_pose = true;  ///< fit the board pose to the hole rims in both images
     BoardPoseRefiner::Params board_refiner;
     // Accumulation and registration.

@@ -28,11 +28,12 @@ class CircleFinder {
     bool project_along_rays = true;   ///< move points onto the plane along their viewing ray (false: orthogonally, paper)
     bool joint_fit = true;            ///< refine the four holes as one rigid pattern (false: independent circles, paper)
     bool model_thickness = true;      ///< fit the aperture a ray sees through a thick board (false: thin board, paper)
+    bool fit_radius = true;           ///< joint fit: estimate the holes' apparent radius (one for all four; the spacing stays exact), so the centres do not slide when holes look smaller than target.yaml says (lidar beam footprint)
     int max_refine_iterations = 30;   ///< Gauss-Newton iterations of each fit, >= 1
     std::uint64_t seed = 7;           ///< random pairs when there are too many to try them all
 
     void validate() const;  ///< throws ParamError naming the field
-    static Params paper();  ///< independent circles, orthogonal projection, thin board
+    static Params paper();  ///< independent circles, orthogonal projection, thin board, fixed radius
   };
 
   struct Result {
@@ -44,6 +45,7 @@ class CircleFinder {
     std::array<int, 4> matched{{-1, -1, -1, -1}};  ///< candidate index of each hole
     double pattern_angle = 0.0;           ///< [rad] in-plane roll of the hole pattern (0 = upright)
     double rms = 0.0;                     ///< [m] rms residual of the final fit
+    double radius = 0.0;                  ///< [m] apparent hole radius of the final fit (target's radius unless fit_radius)
     std::size_t fit_points = 0;           ///< points used in the final fit
   };
 

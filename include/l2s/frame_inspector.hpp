@@ -17,9 +17,14 @@ struct LidarInspection {
   BranchReport report;  ///< what Calibrator::add reports for this sweep
   std::optional<PassThroughFilter::Result> pass_through;  ///< indices into the input sweep
   LidarCloud cloud;  ///< the sweep after pass-through, rings filled: what the later stages index
-  std::optional<PlaneSegmenter::Result> plane;                 ///< inliers index `cloud`
+  std::optional<PlaneSegmenter::Result> plane;  ///< every candidate; inliers index `cloud`
+  std::vector<BoardHypothesis> hypotheses;       ///< board-sized planes tried, in order, and their fate
+  /// The stages run on the chosen hypothesis (or, when none was chosen, on the
+  /// first one tried: the most board-like plane).
   std::optional<DiscontinuityFilter::Result> discontinuities;  ///< sources index `cloud`
   std::optional<CircleFinder::Result> circles;
+  /// The plane candidate those stages ran on (index into plane->candidates), -1 when none.
+  int candidate = -1;
 };
 
 /// Every stage of the camera branch for one stereo pair (see LidarInspection).

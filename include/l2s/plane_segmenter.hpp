@@ -1,6 +1,8 @@
 #pragma once
-// Board plane segmentation (paper Sec. III-B): a RANSAC plane parallel to the
-// sensor's vertical axis, chosen among several candidates by the board's size.
+// Board plane segmentation (paper Sec. III-B): RANSAC planes parallel to the
+// sensor's vertical axis, each cut to its largest connected patch; the
+// board-sized ones are the hypotheses a branch verifies by their holes, most
+// board-like (size, standing apart from its surroundings) first.
 
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
@@ -13,15 +15,22 @@
 
 namespace l2s {
 
-/// One plane the segmenter extracted, and why it was or was not the board.
+/// One plane the segmenter extracted, and whether it may be the board.
 struct PlaneCandidate {
-  Plane plane;                  ///< fitted plane, sensor frame
+  Plane plane;                  ///< fitted plane, sensor frame, normal towards the sensor
   std::size_t support = 0;      ///< full-cloud points within distance_threshold
   std::size_t patch_points = 0;  ///< points of its largest connected patch
   double extent_long = 0.0;     ///< [m] longer side of the patch's smallest in-plane rectangle
   double extent_short = 0.0;    ///< [m] shorter side
-  bool accepted = false;
-  std::string reason;           ///< why it was rejected; empty when accepted
+  /// Coplanar points just outside the patch, as a density relative to the
+  /// patch's own (second-highest of its four sides): ~0 for a board standing
+  /// apart, ~1 for a window cut out of a wall.
+  double isolation = 0.0;
+  double prior = 0.0;           ///< board-likeness before verification, 0..1 (size and isolation)
+  bool plausible = false;       ///< board-sized: a hypothesis for the branch to verify
+  std::string reason;           ///< why it cannot be the board; empty when plausible
+  std::vector<std::size_t> inliers;  ///< input indices within inlier_threshold on the patch (plausible only)
+  double rms = 0.0;             ///< [m] rms distance of the refit's consensus (plausible only)
 };
 
 /// Finds the calibration board's plane in a lidar or stereo cloud.
@@ -33,7 +42,7 @@ class PlaneSegmenter {
     double max_angle = 0.55;           ///< [rad] max tilt of the plane from the vertical axis (alpha_plane), 0..pi/2
     Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< sensor "up": lidar +z, camera optical -y; any non-zero
     int max_iterations = 1000;         ///< RANSAC hypotheses per candidate, >= 1
-    int max_candidates = 6;            ///< planes extracted before giving up, >= 1
+    int max_candidates = 10;           ///< planes extracted (board-sized or not), >= 1
     std::size_t min_support = 30;      ///< fewest consensus points for a candidate, >= 3
     std::size_t max_samples = 50000;   ///< points scored per hypothesis (random subset), >= 100
     double sample_radius = 0.5;        ///< [m] 2nd/3rd sample points come from this neighbourhood, > 0
@@ -41,6 +50,7 @@ class PlaneSegmenter {
     double patch_gap_vertical = 0.25;  ///< [m] patch grid cell height: rows this close always join, rows 2x apart never (so the ground 0.5 m below stays apart); >= ring spacing at the board (16 beams: to 7 m), > 0
     double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height, 0..1
     double min_height_fraction = 0.15;  ///< patch height must reach this fraction of the board height, 0..1
+    double isolation_band = 0.2;       ///< [m] width of the band around a patch searched for coplanar points, > 0
     std::uint64_t seed = 42;           ///< random generator seed; same seed, same result
 
     void validate() const;  ///< throws ParamError naming the field
@@ -49,12 +59,14 @@ class PlaneSegmenter {
   };
 
   struct Result {
-    bool found = false;
-    std::string reason;                 ///< why no board plane was found; empty on success
-    Plane plane;                         ///< board plane (least-squares refit), normal towards the sensor
-    std::vector<std::size_t> inliers;    ///< input indices within inlier_threshold on the board patch
-    double rms = 0.0;                    ///< [m] rms distance of the refit's consensus points
-    std::vector<PlaneCandidate> candidates;  ///< in extraction order; the accepted one is last
+    bool found = false;                 ///< at least one plausible candidate
+    std::string reason;                 ///< why no candidate is plausible; empty when found
+    std::vector<PlaneCandidate> candidates;  ///< in extraction order (decreasing support)
+    std::vector<int> ranking;           ///< plausible candidates, most board-like (prior) first
+    // The top-ranked candidate, for callers that take it without verifying:
+    Plane plane;                         ///< its plane (least-squares refit), normal towards the sensor
+    std::vector<std::size_t> inliers;    ///< its inliers (input indices)
+    double rms = 0.0;                    ///< [m] its refit rms
   };
 
   // Two constructors rather than `Params params = {}`: a nested struct's default

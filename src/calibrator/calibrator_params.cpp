@@ -53,7 +53,6 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   params.camera_plane.inlier_threshold = 0.10;
   params.camera_plane.max_angle = 0.55;
   params.discontinuity = DiscontinuityFilter::Params::paper();
-  params.discontinuity.min_discontinuity = 0.5;
   params.lidar_circles = CircleFinder::Params::paper();
   params.camera_circles = CircleFinder::Params::paper();
   params.edges.sobel_threshold = 128.0;
@@ -68,11 +67,13 @@ void Calibrator::Params::validate() const {
   validate_field("lidar_plane", [&] { lidar_plane.validate(); });
   validate_field("discontinuity", [&] { discontinuity.validate(); });
   validate_field("lidar_circles", [&] { lidar_circles.validate(); });
+  validate_field("lidar_verifier", [&] { lidar_verifier.validate(); });
   validate_field("stereo", [&] { stereo.validate(); });
   validate_field("camera_pass_through", [&] { camera_pass_through.validate(); });
   validate_field("camera_plane", [&] { camera_plane.validate(); });
   validate_field("edges", [&] { edges.validate(); });
   validate_field("camera_circles", [&] { camera_circles.validate(); });
+  validate_field("camera_verifier", [&] { camera_verifier.validate(); });
   validate_field("board_refiner", [&] { board_refiner.validate(); });
   validate_field("accumulator", [&] { accumulator.validate(); });
   validate_field("registrar", [&] { registrar.validate(); });

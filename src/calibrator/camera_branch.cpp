@@ -2,6 +2,8 @@
 
 #include <l2s/io/image_io.hpp>
 
+#include "detail/board_frame.hpp"
+
 namespace l2s::detail {
 namespace {
 
@@ -21,24 +23,6 @@ StereoCloud subset(const StereoCloud& cloud, const std::vector<std::size_t>& ind
     out.pixels.push_back(cloud.pixels[i]);
   }
   return out;
-}
-
-// The board frame of target.hpp from four labelled centres on the front face:
-// the pattern is centred on the board, its rows are horizontal.
-Eigen::Isometry3d board_pose_from_centers(const HoleCenters& c, const Plane& plane) {
-  const auto tl = static_cast<int>(Hole::TopLeft), tr = static_cast<int>(Hole::TopRight);
-  const auto bl = static_cast<int>(Hole::BottomLeft), br = static_cast<int>(Hole::BottomRight);
-  Eigen::Vector3d z = plane.normal();
-  const Eigen::Vector3d center = (c[tl] + c[tr] + c[bl] + c[br]) / 4.0;
-  if (z.dot(center) > 0.0) z = -z;  // out of the front face, towards the camera at the origin
-  Eigen::Vector3d x = (c[tr] - c[tl]) + (c[br] - c[bl]);
-  x = (x - x.dot(z) * z).normalized();
-  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();
-  T_camera_board.linear().col(0) = x;
-  T_camera_board.linear().col(1) = z.cross(x);
-  T_camera_board.linear().col(2) = z;
-  T_camera_board.translation() = center;
-  return T_camera_board;
 }
 
 }  // namespace

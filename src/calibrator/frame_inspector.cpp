@@ -82,20 +82,13 @@ void describe_plane(std::string& out, const std::optional<PlaneSegmenter::Result
                     const PlaneSegmenter::Params& p, const char* field) {
   if (!result) return;
   const auto& r = *result;
-  if (r.found) {
-    const Eigen::Vector3d n = r.plane.normal();
-    append(out,
-           "  plane            board: n (%.3f, %.3f, %.3f), d %.3f m, %zu inliers, rms %.1f mm, "
-           "%.1f deg from vertical\n",
-           n.x(), n.y(), n.z(), r.plane.offset(), r.inliers.size(), r.rms * 1e3,
-           tilt_deg(r.plane, p.axis));
-  } else {
-    if (r.candidates.empty())
-      append(out, "  plane            no board plane: %s\n", r.reason.c_str());
-    else
-      append(out, "  plane            no board plane among %zu candidates (each below)\n",
-             r.candidates.size());
-  }
+  if (r.found)
+    append(out, "  plane            %zu candidates, %zu board-sized (hypotheses, most board-like first)\n",
+           r.candidates.size(), r.ranking.size());
+  else if (r.candidates.empty())
+    append(out, "  plane            no board plane: %s\n", r.reason.c_str());
+  else
+    append(out, "  plane            no board-sized plane among %zu candidates (each below)\n", r.candidates.size());
   append(out,
          "                   [%s: distance_threshold %.3f m, inlier_threshold %.3f m, max_angle "
          "%.3f rad (%.1f deg), size_tolerance %.2f, min_support %zu, max_candidates %d]\n",
@@ -106,10 +99,37 @@ void describe_plane(std::string& out, const std::optional<PlaneSegmenter::Result
     const Eigen::Vector3d n = c.plane.normal();
     append(out,
            "    candidate #%zu   n (%.3f, %.3f, %.3f), d %.3f m, %.1f deg from vertical, support "
-           "%zu, patch %zu points %.2f x %.2f m: %s%s\n",
+           "%zu, patch %zu points %.2f x %.2f m: ",
            i, n.x(), n.y(), n.z(), c.plane.offset(), tilt_deg(c.plane, p.axis), c.support,
-           c.patch_points, c.extent_long, c.extent_short,
-           c.accepted ? "ACCEPTED as the board" : "rejected: ", c.accepted ? "" : c.reason.c_str());
+           c.patch_points, c.extent_long, c.extent_short);
+    if (c.plausible)
+      append(out, "board-sized, isolation %.2f, prior %.2f\n", c.isolation, c.prior);
+    else
+      append(out, "not the board: %s\n", c.reason.c_str());
+  }
+}
+
+// The board-sized planes the branch tried, and why each won or lost.
+void describe_hypotheses(std::string& out, const std::vector<BoardHypothesis>& hypotheses,
+                         const BoardVerifier::Params& p, const char* field) {
+  if (hypotheses.empty()) return;
+  append(out, "  verify           %zu hypothesis(es) tried\n", hypotheses.size());
+  append(out,
+         "                   [%s: hole_margin %.3f m, min_hole_open %.2f, min_outline_open %.2f, "
+         "min_samples %d, confident_score %.2f, max_hypotheses %d]\n",
+         field, p.hole_margin, p.min_hole_open, p.min_outline_open, p.min_samples, p.confident_score,
+         p.max_hypotheses);
+  for (const BoardHypothesis& h : hypotheses) {
+    const BoardEvidence& e = h.evidence;
+    append(out, "    plane #%-2d (prior %.2f): %s%s: %s\n", h.candidate, h.prior,
+           h.chosen ? "CHOSEN" : h.verified ? "verified" : "rejected at ", h.verified ? "" : h.stage.c_str(),
+           h.reason.c_str());
+    if (h.stage.empty() || h.stage == "verify")
+      append(out,
+             "                   holes open/blocked TL %d/%d TR %d/%d BL %d/%d BR %d/%d, outline "
+             "open/blocked %d/%d\n",
+             e.hole_open[0], e.hole_blocked[0], e.hole_open[1], e.hole_blocked[1], e.hole_open[2],
+             e.hole_blocked[2], e.hole_open[3], e.hole_blocked[3], e.outline_open, e.outline_blocked);
   }
 }
 
@@ -195,30 +215,36 @@ std::string describe(const LidarInspection& in, const Calibrator::Params& params
   describe_pass_through(out, in.pass_through, input, params.lidar_pass_through,
                         "lidar_pass_through");
   describe_plane(out, in.plane, params.lidar_plane, "lidar_plane");
+  describe_hypotheses(out, in.hypotheses, params.lidar_verifier, "lidar_verifier");
+  if (in.candidate >= 0)
+    append(out, "  (stages below ran on plane #%d, %s)\n", in.candidate,
+           in.report.found ? "the chosen hypothesis" : "the most board-like one");
 
   if (in.discontinuities) {
     const auto& d = *in.discontinuities;
     const auto& c = d.counts;
     const auto& p = params.discontinuity;
     append(out,
-           "  discontinuities  %zu rings cross the board (%zu board points): %zu discontinuities, "
-           "%zu dropped as border points;\n",
-           c.rings, c.board_points, c.discontinuities, c.border_points);
+           "  discontinuities  %zu rings cross the board (%zu board points): %zu hole crossings, %zu "
+           "see-through gaps wider than a hole, %zu occlusions, %zu stray returns dropped;\n",
+           c.rings, c.board_points, c.hole_crossings, c.wide_gaps, c.occlusions, c.stray_points);
+    append(out, "                   rings kept %zu, rejected %zu (more than %d hole edges) -> %zu edge points%s%s\n",
+           c.rings_kept, c.rings_rejected, p.max_ring_edges, d.edges.size(), d.found ? "" : ": ",
+           d.found ? "" : d.reason.c_str());
     append(out,
-           "                   rings kept %zu, rejected %zu (edge count not %d..%d) -> %zu edge "
-           "points%s%s\n",
-           c.rings_kept, c.rings_rejected, p.min_ring_edges, p.max_ring_edges, d.edges.size(),
-           d.found ? "" : ": ", d.found ? "" : d.reason.c_str());
-    append(out,
-           "                   [discontinuity: min_discontinuity %.2f m, min/max_ring_edges %d/%d, "
-           "drop_border_points %s, placement %s]\n",
-           p.min_discontinuity, p.min_ring_edges, p.max_ring_edges, yes_no(p.drop_border_points),
+           "                   [discontinuity: min_discontinuity %.2f m, max_stray_points %d, "
+           "hole_gap_tolerance %.2f, max_ring_edges %d, placement %s]\n",
+           p.min_discontinuity, p.max_stray_points, p.hole_gap_tolerance, p.max_ring_edges,
            placement_name(p.placement));
   }
-  if (in.circles && in.plane) {
-    const Eigen::Vector3d centre = detail::centroid(in.cloud.points, in.plane->inliers);
-    describe_circles(out, in.circles, in.plane->plane, Eigen::Vector3d::UnitZ(), centre,
+  if (in.circles && in.plane && in.candidate >= 0) {
+    const PlaneCandidate& plane = in.plane->candidates[in.candidate];
+    const Eigen::Vector3d centre = detail::centroid(in.cloud.points, plane.inliers);
+    describe_circles(out, in.circles, plane.plane, Eigen::Vector3d::UnitZ(), centre,
                      params.lidar_circles, "lidar_circles", 1e3, "mm");
+    if (in.circles->found)
+      append(out, "  apparent holes   r %.1f mm%s\n", in.circles->radius * 1e3,
+             params.lidar_circles.fit_radius ? " (fitted; lidars see holes smaller than they are)" : " (target's)");
   }
   describe_centers(out, in.report, "lidar frame");
   return out;

@@ -33,6 +33,7 @@ void visit(V& v, PlaneSegmenter::Params& p) {
   v.field("patch_gap_vertical", p.patch_gap_vertical);
   v.field("size_tolerance", p.size_tolerance);
   v.field("min_height_fraction", p.min_height_fraction);
+  v.field("isolation_band", p.isolation_band);
   v.field("seed", p.seed);
 }
 
@@ -42,8 +43,8 @@ void visit(V& v, DiscontinuityFilter::Params& p) {
   v.field("min_discontinuity", p.min_discontinuity);
   v.field("azimuth_step", p.azimuth_step);
   v.field("gap_factor", p.gap_factor);
-  v.field("drop_border_points", p.drop_border_points);
-  v.field("min_ring_edges", p.min_ring_edges);
+  v.field("max_stray_points", p.max_stray_points);
+  v.field("hole_gap_tolerance", p.hole_gap_tolerance);
   v.field("max_ring_edges", p.max_ring_edges);
   v.choice("placement", p.placement, {{P::LastBoardPoint, "last_board_point"}, {P::Midpoint, "midpoint"}});
 }
@@ -58,8 +59,21 @@ void visit(V& v, CircleFinder::Params& p) {
   v.field("project_along_rays", p.project_along_rays);
   v.field("joint_fit", p.joint_fit);
   v.field("model_thickness", p.model_thickness);
+  v.field("fit_radius", p.fit_radius);
   v.field("max_refine_iterations", p.max_refine_iterations);
   v.field("seed", p.seed);
+}
+
+template <class V>
+void visit(V& v, BoardVerifier::Params& p) {
+  v.field("hole_margin", p.hole_margin);
+  v.field("outline_gap", p.outline_gap);
+  v.field("outline_width", p.outline_width);
+  v.field("min_samples", p.min_samples);
+  v.field("min_hole_open", p.min_hole_open);
+  v.field("min_outline_open", p.min_outline_open);
+  v.field("confident_score", p.confident_score);
+  v.field("max_hypotheses", p.max_hypotheses);
 }
 
 template <class V>
@@ -146,11 +160,13 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("lidar_plane", [&](V& s) { visit(s, p.lidar_plane); });
   v.section("discontinuity", [&](V& s) { visit(s, p.discontinuity); });
   v.section("lidar_circles", [&](V& s) { visit(s, p.lidar_circles); });
+  v.section("lidar_verifier", [&](V& s) { visit(s, p.lidar_verifier); });
   v.section("stereo", [&](V& s) { visit(s, p.stereo); });
   v.section("camera_pass_through", [&](V& s) { visit(s, p.camera_pass_through); });
   v.section("camera_plane", [&](V& s) { visit(s, p.camera_plane); });
   v.section("edges", [&](V& s) { visit(s, p.edges); });
   v.section("camera_circles", [&](V& s) { visit(s, p.camera_circles); });
+  v.section("camera_verifier", [&](V& s) { visit(s, p.camera_verifier); });
   v.field("refine_camera_pose", p.refine_camera_pose);
   v.section("board_refiner", [&](V& s) { visit(s, p.board_refiner); });
   v.section("accumulator", [&](V& s) { visit(s, p.accumulator); });

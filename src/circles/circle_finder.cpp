@@ -35,6 +35,7 @@ CircleFinder::Params CircleFinder::Params::paper() {
   params.project_along_rays = false;
   params.joint_fit = false;
   params.model_thickness = false;
+  params.fit_radius = false;
   return params;
 }
 
@@ -104,7 +105,10 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
   if (params_.joint_fit) {
     // Every point within the threshold of a hole's aperture joins the fit,
     // including points the candidate search left to no circle.
-    detail::PatternPose pose{match.offset, match.angle};
+    detail::PatternPose pose{match.offset, match.angle, radius};
+    detail::RadiusFit radius_fit;
+    radius_fit.free = params_.fit_radius;
+    radius_fit.nominal = radius;
     std::vector<int> hole_of(points.size(), -1);
     for (int pass = 0; pass < 2; ++pass) {
       result.fit_points = 0;
@@ -112,13 +116,14 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
         hole_of[i] = -1;
         double best = params_.inlier_threshold;
         for (int h = 0; h < 4; ++h) {
-          const double e = std::abs(detail::aperture_residual(points[i], pose.center(holes[h]), radius));
+          const double e = std::abs(detail::aperture_residual(points[i], pose.center(holes[h]), pose.radius));
           if (e <= best) best = e, hole_of[i] = h;
         }
         if (hole_of[i] >= 0) ++result.fit_points;
       }
-      result.rms = detail::refine_pattern(points, hole_of, holes, radius, params_.max_refine_iterations, pose);
+      result.rms = detail::refine_pattern(points, hole_of, holes, radius_fit, params_.max_refine_iterations, pose);
     }
+    result.radius = pose.radius;
     for (int h = 0; h < 4; ++h) centers2[h] = pose.center(holes[h]);
     result.pattern_angle = pose.angle;
   } else {
@@ -133,6 +138,7 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
     }
     result.rms = result.fit_points ? std::sqrt(sum_sq / static_cast<double>(result.fit_points)) : 0.0;
     result.pattern_angle = match.angle;
+    result.radius = radius;
   }
   for (int h = 0; h < 4; ++h) result.centers[h] = to_sensor(centers2[h]);
   result.found = true;

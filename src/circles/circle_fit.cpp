@@ -128,12 +128,15 @@ double refine_circle(const std::vector<EdgePoint2>& points, const std::vector<st
 }
 
 double refine_pattern(const std::vector<EdgePoint2>& points, const std::vector<int>& hole_of,
-                      const std::array<Eigen::Vector2d, 4>& holes, double radius, int iterations,
+                      const std::array<Eigen::Vector2d, 4>& holes, const RadiusFit& radius_fit, int iterations,
                       PatternPose& pose) {
-  std::size_t used = 0;
+  // Parameters: offset x, y, angle and (when free) radius. Real lidars see
+  // holes smaller than they are (beam footprint, mixed returns); a fixed
+  // radius then slides the centres towards the side with more rim points.
+  const int n = radius_fit.free ? 4 : 3;
   for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d Jtr = Eigen::Vector3d::Zero();
+    Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d Jtr = Eigen::Vector4d::Zero();
     const Eigen::Rotation2Dd R(pose.angle);
     const Eigen::Matrix2d dR = (Eigen::Matrix2d() << -std::sin(pose.angle), -std::cos(pose.angle),
                                 std::cos(pose.angle), -std::sin(pose.angle)).finished();
@@ -142,22 +145,29 @@ double refine_pattern(const std::vector<EdgePoint2>& points, const std::vector<i
       const Eigen::Vector2d& h = holes[hole_of[i]];
       const Eigen::Vector2d c = R * h + pose.offset;
       const Eigen::Vector2d g = residual_gradient(points[i], c);  // d residual / d centre
-      const Eigen::Vector3d J(g.x(), g.y(), g.dot(dR * h));
-      const double e = aperture_residual(points[i], c, radius);
+      const Eigen::Vector4d J(g.x(), g.y(), g.dot(dR * h), -1.0);
+      const double e = aperture_residual(points[i], c, pose.radius);
       JtJ += J * J.transpose();
       Jtr += J * e;
     }
-    JtJ += 1e-9 * Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d step = -JtJ.ldlt().solve(Jtr);
+    if (radius_fit.free) {  // weak prior: holds the radius where the rims cannot tell it
+      JtJ(3, 3) += radius_fit.prior_points;
+      Jtr(3) += radius_fit.prior_points * (pose.radius - radius_fit.nominal);
+    }
+    const Eigen::MatrixXd A = JtJ.topLeftCorner(n, n) + 1e-9 * Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd step = -A.ldlt().solve(Jtr.head(n));
     if (!step.allFinite()) break;
     pose.offset += step.head<2>();
-    pose.angle += step.z();
+    pose.angle += step(2);
+    if (radius_fit.free)
+      pose.radius = std::clamp(pose.radius + step(3), 0.6 * radius_fit.nominal, 1.2 * radius_fit.nominal);
     if (step.norm() < 1e-10) break;
   }
   double sum_sq = 0.0;
+  std::size_t used = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (hole_of[i] < 0) continue;
-    sum_sq += std::pow(aperture_residual(points[i], pose.center(holes[hole_of[i]]), radius), 2);
+    sum_sq += std::pow(aperture_residual(points[i], pose.center(holes[hole_of[i]]), pose.radius), 2);
     ++used;
   }
   return used ? std::sqrt(sum_sq / static_cast<double>(used)) : 0.0;

@@ -48,16 +48,26 @@ std::vector<CircleCandidate2> find_circle_candidates(const std::vector<EdgePoint
 double refine_circle(const std::vector<EdgePoint2>& points, const std::vector<std::size_t>& indices,
                      double radius, int iterations, Eigen::Vector2d& center);
 
-/// A rigid placement of the hole pattern in the plane: c_h = R(angle) h + offset.
+/// A rigid placement of the hole pattern in the plane, c_h = R(angle) h + offset,
+/// and the radius the holes appear to have.
 struct PatternPose {
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();
-  double angle = 0.0;  // [rad]
+  double angle = 0.0;   // [rad]
+  double radius = 0.0;  // [m] apparent hole radius
   Eigen::Vector2d center(const Eigen::Vector2d& hole) const;
 };
 
-/// Gauss-Newton on the pattern pose; hole_of[i] says which hole point i rims.
+/// How refine_pattern treats the radius.
+struct RadiusFit {
+  bool free = false;         // estimate one apparent radius for all four holes
+  double nominal = 0.12;     // [m] the target's radius: the prior, and the bounds' reference
+  double prior_points = 2.0;  // the prior weighs as much as this many points saying "nominal"
+};
+
+/// Gauss-Newton on the pattern pose (and the common radius when free, the
+/// spacing staying a hard constraint); hole_of[i] says which hole point i rims.
 double refine_pattern(const std::vector<EdgePoint2>& points, const std::vector<int>& hole_of,
-                      const std::array<Eigen::Vector2d, 4>& holes, double radius, int iterations,
+                      const std::array<Eigen::Vector2d, 4>& holes, const RadiusFit& radius_fit, int iterations,
                       PatternPose& pose);
 
 }  // namespace l2s::detail

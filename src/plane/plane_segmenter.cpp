@@ -3,9 +3,13 @@
 // vertical axis within alpha_plane, then all points within delta_inliers.
 //
 // The paper keeps the single best plane; a wall behind the board is vertical
-// and larger, so it would win. Here planes are extracted one after another and
-// the first whose largest connected patch has the board's size is taken; every
-// rejected candidate says why. The consensus is refit by least squares.
+// and larger, so it would win. Here planes are extracted one after another,
+// each cut to its largest connected patch. Every board-sized patch is a
+// hypothesis (the branches verify each by its holes); they are ranked by how
+// board-like they are: the size, and whether the surface stands apart (a
+// window cut out of a side wall has coplanar points all around it, a board
+// has none). Every rejected candidate says why. Plausible candidates are
+// refit by least squares.
 #include <l2s/plane_segmenter.hpp>
 
 #include <l2s/error.hpp>
@@ -15,6 +19,7 @@
 #include "plane/vertical_plane_ransac.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -52,6 +57,191 @@ std::string board_mismatch(const detail::Patch& patch, std::size_t patch_points,
   return {};
 }
 
+
+/// Coplanar density in four bands (left, right, below, above) around the
+/// patch box, relative to the density inside it; the second highest side. A
+/// board touches at most one other surface (the ground or its stand below),
+/// a window of a wall continues on at least two sides.
+class IsolationCounter {
+ public:
+  IsolationCounter(const Eigen::AlignedBox2d& box, double band) : box_(box), band_(band) {}
+
+  void add(const Eigen::Vector2d& uv) {
+    if (box_.contains(uv)) {
+      ++inside_;
+      return;
+    }
+    const Eigen::Vector2d lo = box_.min(), hi = box_.max();
+    const bool rows = uv.y() >= lo.y() && uv.y() <= hi.y(), cols = uv.x() >= lo.x() && uv.x() <= hi.x();
+    if (rows && uv.x() < lo.x() && uv.x() >= lo.x() - band_) ++side_[0];
+    if (rows && uv.x() > hi.x() && uv.x() <= hi.x() + band_) ++side_[1];
+    if (cols && uv.y() < lo.y() && uv.y() >= lo.y() - band_) ++side_[2];
+    if (cols && uv.y() > hi.y() && uv.y() <= hi.y() + band_) ++side_[3];
+  }
+
+  double isolation() const {
+    const Eigen::Vector2d size = box_.sizes();
+    if (inside_ == 0 || size.prod() <= 0.0) return 0.0;
+    const double density = static_cast<double>(inside_) / size.prod();
+    std::array<double, 4> ratio{};
+    for (int k = 0; k < 4; ++k) {
+      const double area = band_ * (k < 2 ? size.y() : size.x());
+      ratio[k] = std::min(1.0, static_cast<double>(side_[k]) / area / density);
+    }
+    std::sort(ratio.begin(), ratio.end());
+    return ratio[2];
+  }
+
+ private:
+  Eigen::AlignedBox2d box_;
+  double band_;
+  std::size_t inside_ = 0;
+  std::array<std::size_t, 4> side_{};
+};
+
+/// Board-likeness 0..1: the length match, how much of the board's height the
+/// patch covers (a strip of a wall is as long as the board but thin), and the
+/// isolation.
+double board_prior(const PlaneCandidate& c, const Target& target, double size_tolerance) {
+  const double board_long = std::max(target.board_width, target.board_height);
+  const double board_short = std::min(target.board_width, target.board_height);
+  const double size_error = std::abs(c.extent_long / board_long - 1.0) / std::max(size_tolerance, 1e-6);
+  const double height = std::min(1.0, c.extent_short / board_short);
+  return (1.0 - 0.5 * std::min(1.0, size_error)) * (0.5 + 0.5 * height) * (1.0 - 0.9 * c.isolation);
+}
+
+struct Samples {
+  std::vector<std::size_t> finite;      // indices of the finite input points
+  std::vector<Eigen::Vector3d> points;  // random subset in random order (RANSAC pre-scores a prefix)
+};
+
+Samples draw_samples(const std::vector<Eigen::Vector3d>& points, std::size_t max_samples, std::mt19937_64& rng) {
+  Samples s;
+  s.finite.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (points[i].allFinite()) s.finite.push_back(i);
+  const std::size_t count = std::min(s.finite.size(), max_samples);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uniform_int_distribution<std::size_t> pick(i, s.finite.size() - 1);
+    std::swap(s.finite[i], s.finite[pick(rng)]);
+  }
+  s.points.resize(count);
+  for (std::size_t i = 0; i < count; ++i) s.points[i] = points[s.finite[i]];
+  return s;
+}
+
+/// The RANSAC hypothesis refit on its sample consensus, unless the refit leaves the cone.
+Plane refit_hypothesis(const Plane& hypothesis, const std::vector<Eigen::Vector3d>& samples,
+                       const PlaneSegmenter::Params& params, double max_sin_axis) {
+  std::vector<std::size_t> consensus;
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (std::abs(hypothesis.signedDistance(samples[i])) <= params.distance_threshold) consensus.push_back(i);
+  Plane plane = detail::fit_plane(samples, consensus);
+  if (std::abs(plane.normal().dot(params.axis)) > max_sin_axis) plane = hypothesis;
+  return detail::facing_origin(plane);
+}
+
+/// One extracted plane: its patch and, when board-sized, its refit and inliers.
+struct Extraction {
+  PlaneCandidate candidate;
+  detail::Patch patch;
+};
+
+void refit(Extraction& e, const std::vector<Eigen::Vector3d>& points, const std::vector<std::size_t>& finite,
+           const detail::PlaneGrid& grid, const std::vector<std::size_t>& patch_consensus,
+           const PlaneSegmenter::Params& params) {
+  // Least-squares refit on the full-cloud consensus, then again on everything
+  // within delta_inliers (a thin consensus slice of a noisy stereo cloud leans
+  // towards the hypothesis it was cut with).
+  PlaneCandidate& c = e.candidate;
+  const auto in_patch = [&](std::size_t i) { return detail::in_patch(grid, e.patch, points[i]); };
+  std::vector<std::size_t> near;  // patch points within a generous slab: the passes choose among them
+  for (std::size_t i : finite)
+    if (std::abs(c.plane.signedDistance(points[i])) <= 2.0 * params.inlier_threshold && in_patch(i))
+      near.push_back(i);
+  Plane plane = detail::facing_origin(detail::fit_plane(points, patch_consensus));
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::size_t> wide;
+    for (std::size_t i : near)
+      if (std::abs(plane.signedDistance(points[i])) <= params.inlier_threshold) wide.push_back(i);
+    if (wide.size() < 3) break;
+    plane = detail::facing_origin(detail::fit_plane(points, wide));
+  }
+  double sum_sq = 0.0;
+  for (std::size_t i : patch_consensus) sum_sq += std::pow(plane.signedDistance(points[i]), 2);
+  c.plane = plane;
+  c.rms = std::sqrt(sum_sq / static_cast<double>(patch_consensus.size()));
+  for (std::size_t i : near)
+    if (std::abs(plane.signedDistance(points[i])) <= params.inlier_threshold) c.inliers.push_back(i);
+  std::sort(c.inliers.begin(), c.inliers.end());
+}
+
+Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& points,
+                   const std::vector<std::size_t>& finite, const std::vector<Eigen::Vector3d>& samples,
+                   const Target& target, const PlaneSegmenter::Params& params) {
+  Extraction e;
+  PlaneCandidate& c = e.candidate;
+  c.plane = plane;
+  std::vector<Eigen::Vector3d> on_plane;
+  for (const Eigen::Vector3d& p : samples)
+    if (std::abs(plane.signedDistance(p)) <= params.distance_threshold) on_plane.push_back(p);
+  const detail::PlaneGrid grid(plane, params.axis, params.patch_gap_horizontal, params.patch_gap_vertical);
+  // The window allows the board's size plus tolerance, horizontally long.
+  const double tol = 1.0 + params.size_tolerance;
+  const Eigen::Vector2d window(tol * std::max(target.board_width, target.board_height),
+                               tol * std::min(target.board_width, target.board_height));
+  e.patch = detail::largest_patch(grid, on_plane, window, kWindowShare);
+  c.extent_long = e.patch.extent_long;
+  c.extent_short = e.patch.extent_short;
+
+  // One pass over the full cloud: support, the consensus inside the patch, and
+  // the coplanar points around it. Patch membership of each point is looked up
+  // once: a dense stereo cloud makes that the segmenter's hot spot.
+  IsolationCounter around(e.patch.box, params.isolation_band);
+  std::vector<std::size_t> patch_consensus;
+  for (std::size_t i : finite) {
+    if (std::abs(plane.signedDistance(points[i])) > params.distance_threshold) continue;
+    ++c.support;
+    const Eigen::Vector2d uv = grid.to_plane(points[i]);
+    around.add(uv);
+    if (e.patch.box.contains(uv) && e.patch.cells.count(grid.cell(uv))) patch_consensus.push_back(i);
+  }
+  c.patch_points = patch_consensus.size();
+  if (c.support < params.min_support) {
+    c.reason = "support " + std::to_string(c.support) + " below min_support";
+    return e;
+  }
+  c.reason = board_mismatch(e.patch, c.patch_points, target, params);
+  if (!c.reason.empty()) return e;
+  c.isolation = around.isolation();
+  c.prior = board_prior(c, target, params.size_tolerance);
+  c.plausible = true;
+  refit(e, points, finite, grid, patch_consensus, params);
+  return e;
+}
+
+/// Orders the plausible candidates by prior and names the top one the result's plane.
+void rank(PlaneSegmenter::Result& result) {
+  for (std::size_t i = 0; i < result.candidates.size(); ++i)
+    if (result.candidates[i].plausible) result.ranking.push_back(static_cast<int>(i));
+  std::stable_sort(result.ranking.begin(), result.ranking.end(), [&](int a, int b) {
+    return result.candidates[a].prior > result.candidates[b].prior;
+  });
+  if (!result.ranking.empty()) {
+    const PlaneCandidate& best = result.candidates[result.ranking.front()];
+    result.found = true;
+    result.plane = best.plane;
+    result.inliers = best.inliers;
+    result.rms = best.rms;
+    return;
+  }
+  std::ostringstream reason;
+  reason << "no board-sized plane among " << result.candidates.size() << " candidate(s)";
+  for (std::size_t i = 0; i < result.candidates.size(); ++i)
+    reason << (i ? "; " : ": ") << "#" << i << " " << result.candidates[i].reason;
+  result.reason = reason.str();
+}
+
 }  // namespace
 
 void PlaneSegmenter::Params::validate() const {
@@ -72,6 +262,7 @@ void PlaneSegmenter::Params::validate() const {
   if (!(size_tolerance >= 0.0 && size_tolerance < 1.0)) throw ParamError("size_tolerance", "must be in [0, 1)");
   if (!(min_height_fraction >= 0.0 && min_height_fraction <= 1.0))
     throw ParamError("min_height_fraction", "must be in [0, 1]");
+  positive(isolation_band, "isolation_band");
 }
 
 PlaneSegmenter::Params PlaneSegmenter::Params::lidar() { return Params{}; }
@@ -82,6 +273,7 @@ PlaneSegmenter::Params PlaneSegmenter::Params::stereo() {
   params.axis = -Eigen::Vector3d::UnitY();  // optical frame: y points down
   params.patch_gap_horizontal = 0.1;        // dense cloud: holes need not be bridged by one ring
   params.patch_gap_vertical = 0.1;
+  params.max_candidates = 6;  // each costs a pass over a dense cloud
   return params;
 }
 
@@ -92,29 +284,17 @@ PlaneSegmenter::PlaneSegmenter(Params params) : params_(std::move(params)) {
   params_.axis.normalize();
 }
 
+
 PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d>& points,
                                                const Target& target) const {
   target.validate();
   Result result;
-  std::vector<std::size_t> finite;
-  finite.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (points[i].allFinite()) finite.push_back(i);
-  if (finite.size() < params_.min_support) {
-    result.reason = "only " + std::to_string(finite.size()) + " finite points";
+  std::mt19937_64 rng(params_.seed);
+  Samples s = draw_samples(points, params_.max_samples, rng);
+  if (s.finite.size() < params_.min_support) {
+    result.reason = "only " + std::to_string(s.finite.size()) + " finite points";
     return result;
   }
-
-  // A random subset in random order: RANSAC pre-scores on its prefix.
-  std::mt19937_64 rng(params_.seed);
-  const std::size_t sample_count = std::min(finite.size(), params_.max_samples);
-  for (std::size_t i = 0; i < sample_count; ++i) {
-    std::uniform_int_distribution<std::size_t> pick(i, finite.size() - 1);
-    std::swap(finite[i], finite[pick(rng)]);
-  }
-  std::vector<Eigen::Vector3d> samples(sample_count);
-  for (std::size_t i = 0; i < sample_count; ++i) samples[i] = points[finite[i]];
-
   detail::VerticalPlaneRansacParams ransac;
   ransac.distance_threshold = params_.distance_threshold;
   ransac.max_sin_axis = std::sin(params_.max_angle);
@@ -122,98 +302,27 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
   ransac.max_iterations = params_.max_iterations;
   ransac.sample_radius = params_.sample_radius;
 
-  for (int c = 0; c < params_.max_candidates && samples.size() >= 3; ++c) {
+  std::vector<Eigen::Vector3d>& samples = s.points;
+  for (int k = 0; k < params_.max_candidates && samples.size() >= 3; ++k) {
     const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(samples, ransac, rng);
     if (!found.found) break;
-
-    // Refit on the sample consensus; keep the hypothesis if the refit leaves the cone.
-    std::vector<std::size_t> consensus;
-    for (std::size_t i = 0; i < samples.size(); ++i)
-      if (std::abs(found.plane.signedDistance(samples[i])) <= params_.distance_threshold) consensus.push_back(i);
-    Plane plane = detail::fit_plane(samples, consensus);
-    if (std::abs(plane.normal().dot(params_.axis)) > ransac.max_sin_axis) plane = found.plane;
-    plane = detail::facing_origin(plane);
-
-    std::vector<Eigen::Vector3d> on_plane;
+    const Plane plane = refit_hypothesis(found.plane, samples, params_, ransac.max_sin_axis);
+    Extraction e = measure(plane, points, s.finite, samples, target, params_);
+    const bool too_small = e.candidate.support < params_.min_support;
+    result.candidates.push_back(std::move(e.candidate));
+    if (too_small) break;  // candidates come in decreasing support: none left can be the board
+    // Drop this patch (thick surfaces too: inlier_threshold) and look again.
+    const Plane& cut = result.candidates.back().plane;
+    const detail::PlaneGrid grid(cut, params_.axis, params_.patch_gap_horizontal, params_.patch_gap_vertical);
+    std::vector<Eigen::Vector3d> rest;
+    rest.reserve(samples.size());
     for (const Eigen::Vector3d& p : samples)
-      if (std::abs(plane.signedDistance(p)) <= params_.distance_threshold) on_plane.push_back(p);
-    const detail::PlaneGrid grid(plane, params_.axis, params_.patch_gap_horizontal, params_.patch_gap_vertical);
-    // The window allows the board's size plus tolerance, horizontally long.
-    const double tol = 1.0 + params_.size_tolerance;
-    const Eigen::Vector2d window(tol * std::max(target.board_width, target.board_height),
-                                 tol * std::min(target.board_width, target.board_height));
-    const detail::Patch patch = detail::largest_patch(grid, on_plane, window, kWindowShare);
-    // Patch membership of a point never changes for this candidate, but the
-    // refit passes below ask again; a dense stereo cloud makes that the
-    // segmenter's hot spot, so each point is looked up once.
-    std::vector<signed char> membership(points.size(), -1);
-    const auto in_patch = [&](std::size_t i) {
-      if (membership[i] < 0) membership[i] = detail::in_patch(grid, patch, points[i]) ? 1 : 0;
-      return membership[i] == 1;
-    };
-
-    // One pass over the full cloud: support, and the consensus inside the patch.
-    PlaneCandidate candidate;
-    candidate.plane = plane;
-    candidate.extent_long = patch.extent_long;
-    candidate.extent_short = patch.extent_short;
-    std::vector<std::size_t> patch_consensus;
-    for (std::size_t i : finite) {
-      if (std::abs(plane.signedDistance(points[i])) > params_.distance_threshold) continue;
-      ++candidate.support;
-      if (in_patch(i)) patch_consensus.push_back(i);
-    }
-    candidate.patch_points = patch_consensus.size();
-    if (candidate.support < params_.min_support) {
-      candidate.reason = "support " + std::to_string(candidate.support) + " below min_support";
-      result.candidates.push_back(candidate);
-      break;  // candidates come in decreasing support: none left can be the board
-    }
-    candidate.reason = board_mismatch(patch, candidate.patch_points, target, params_);
-    if (!candidate.reason.empty()) {
-      result.candidates.push_back(candidate);
-      // Drop this patch (thick surfaces too: inlier_threshold) and look again.
-      std::vector<Eigen::Vector3d> rest;
-      rest.reserve(samples.size());
-      for (const Eigen::Vector3d& p : samples)
-        if (std::abs(plane.signedDistance(p)) > params_.inlier_threshold || !detail::in_patch(grid, patch, p))
-          rest.push_back(p);
-      if (rest.size() == samples.size()) break;
-      samples.swap(rest);
-      continue;
-    }
-
-    // The board: least-squares refit on its full-cloud consensus, then again on
-    // everything within delta_inliers (a thin consensus slice of a noisy stereo
-    // cloud leans towards the hypothesis it was cut with).
-    Plane refit = detail::facing_origin(detail::fit_plane(points, patch_consensus));
-    for (int pass = 0; pass < 2; ++pass) {
-      std::vector<std::size_t> wide;
-      for (std::size_t i : finite)
-        if (std::abs(refit.signedDistance(points[i])) <= params_.inlier_threshold && in_patch(i))
-          wide.push_back(i);
-      if (wide.size() < 3) break;
-      refit = detail::facing_origin(detail::fit_plane(points, wide));
-    }
-    double sum_sq = 0.0;
-    for (std::size_t i : patch_consensus) sum_sq += std::pow(refit.signedDistance(points[i]), 2);
-    candidate.plane = refit;
-    candidate.accepted = true;
-    result.candidates.push_back(candidate);
-    result.plane = refit;
-    result.rms = std::sqrt(sum_sq / static_cast<double>(patch_consensus.size()));
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (points[i].allFinite() && std::abs(refit.signedDistance(points[i])) <= params_.inlier_threshold &&
-          in_patch(i))
-        result.inliers.push_back(i);
-    result.found = true;
-    return result;
+      if (std::abs(cut.signedDistance(p)) > params_.inlier_threshold || !detail::in_patch(grid, e.patch, p))
+        rest.push_back(p);
+    if (rest.size() == samples.size()) break;
+    samples.swap(rest);
   }
-  std::ostringstream reason;
-  reason << "no board-sized plane among " << result.candidates.size() << " candidate(s)";
-  for (std::size_t i = 0; i < result.candidates.size(); ++i)
-    reason << (i ? "; " : ": ") << "#" << i << " " << result.candidates[i].reason;
-  result.reason = reason.str();
+  rank(result);
   return result;
 }
 

@@ -91,8 +91,8 @@ cv::Mat top_down_panel(const LidarInspection& in, int size_px) {
   for (const auto& p : in.cloud.points)
     if (p.allFinite() && view.inside(to_view(p)))
       cv::circle(panel, view.to_px(to_view(p)), 1, cv::Scalar(120, 120, 120), cv::FILLED);
-  if (in.plane)
-    for (const std::size_t i : in.plane->inliers)
+  if (in.plane && in.candidate >= 0)
+    for (const std::size_t i : in.plane->candidates[in.candidate].inliers)
       cv::circle(panel, view.to_px(to_view(in.cloud.points[i])), 1, kBoard, cv::FILLED);
 
   // Each candidate plane (near vertical) seen from above is the line n_x x + n_y y + d = 0.
@@ -106,7 +106,9 @@ cv::Mat top_down_panel(const LidarInspection& in, int size_px) {
       const Eigen::Vector2d foot = -plane.offset() * n / n.squaredNorm();
       const Eigen::Vector2d dir(-n.y(), n.x());
       const double reach = (view.max - view.min).norm();
-      const cv::Scalar colour = candidates[i].accepted ? kHole : kRejected;
+      const cv::Scalar colour = static_cast<int>(i) == in.candidate && in.report.found ? kHole
+                                : candidates[i].plausible                             ? kCandidate
+                                                                                      : kRejected;
       cv::line(panel, view.to_px(foot - reach * dir.normalized()),
                view.to_px(foot + reach * dir.normalized()), colour, 1, cv::LINE_AA);
       // Label at the foot of the perpendicular from the sensor, clamped into the panel.
@@ -125,7 +127,7 @@ cv::Mat top_down_panel(const LidarInspection& in, int size_px) {
 
 // The board plane seen face-on from the sensor.
 cv::Mat board_plane_panel(const LidarInspection& in, const Target& target, int size_px) {
-  if (!in.plane || !in.plane->found) {
+  if (!in.plane || in.candidate < 0) {
     cv::Mat panel(size_px, size_px, CV_8UC3, cv::Scalar(20, 20, 20));
     text(panel, "board plane: not found", {10, 40}, kFail);
     if (in.plane) {
@@ -147,7 +149,7 @@ cv::Mat board_plane_panel(const LidarInspection& in, const Target& target, int s
     }
     return panel;
   }
-  const auto& plane = *in.plane;
+  const PlaneCandidate& plane = in.plane->candidates[in.candidate];
   const auto frame = detail::PlaneFrame::make(plane.plane, Eigen::Vector3d::UnitZ(),
                                               detail::centroid(in.cloud.points, plane.inliers));
   const double half_w = 0.5 * target.board_width + 0.5, half_h = 0.5 * target.board_height + 0.5;
@@ -228,16 +230,16 @@ std::string lidar_counts(const LidarInspection& in) {
   std::string out;
   if (in.pass_through) out += std::to_string(in.cloud.size()) + " points after pass-through";
   if (in.plane) {
-    std::snprintf(line, sizeof(line), " | plane: %zu candidates, %zu board points",
-                  in.plane->candidates.size(), in.plane->inliers.size());
+    std::snprintf(line, sizeof(line), " | plane: %zu candidates, %zu board-sized, %zu tried",
+                  in.plane->candidates.size(), in.plane->ranking.size(), in.hypotheses.size());
     out += line;
   }
   if (in.discontinuities) {
     const auto& c = in.discontinuities->counts;
     std::snprintf(
         line, sizeof(line),
-        " | %zu edge points (%zu discontinuities, %zu border; rings kept %zu, rejected %zu)",
-        in.discontinuities->edges.size(), c.discontinuities, c.border_points, c.rings_kept,
+        " | %zu edge points (%zu hole crossings, %zu strays; rings kept %zu, rejected %zu)",
+        in.discontinuities->edges.size(), c.hole_crossings, c.stray_points, c.rings_kept,
         c.rings_rejected);
     out += line;
   }

@@ -1,0 +1,74 @@
+#pragma once
+// Hypothesise, then verify (STYLE.md, "Growing the facade"). A branch guesses
+// where the board is (a board-sized plane), finds four holes on it, and only
+// then asks whether the guess is the target: does the sensor see *through*
+// the holes, and does the surface end at the board's outline (a window cut
+// out of a wall does not)? Each branch gathers that evidence from its own data
+// (lidar returns behind the plane; stereo photo-consistency); BoardVerifier
+// judges it the same way for every sensor, and ranks the hypotheses that pass.
+
+#include <array>
+#include <string>
+
+namespace l2s {
+
+/// What a sensor saw where the target's holes and outline should be.
+struct BoardEvidence {
+  std::array<int, 4> hole_open{};     ///< samples inside each hole (enum Hole order; rim margin left out) that see through it
+  std::array<int, 4> hole_blocked{};  ///< samples inside each hole that see a surface on the board plane
+  int outline_open = 0;               ///< samples in a band just outside the board outline that see past the board
+  int outline_blocked = 0;            ///< samples in that band that see a surface coplanar with the board
+  double fit_rms = 0.0;               ///< [m] rms of the hole rim fit
+  double fit_scale = 0.02;            ///< [m] rim fit rms that halves the score (the circle finder's inlier threshold)
+};
+
+/// Judges the evidence of one board hypothesis.
+class BoardVerifier {
+ public:
+  struct Params {
+    double hole_margin = 0.025;     ///< [m] band inside each rim left out of the hole samples (mixed returns, stereo smear, apparent shrink), >= 0
+    double outline_gap = 0.05;      ///< [m] the band around the outline starts this far out (mixed returns, border smear), >= 0
+    double outline_width = 0.15;    ///< [m] width of that band, > 0
+    int min_samples = 5;            ///< a hole (or the outline band) with fewer samples gives no evidence, >= 1
+    double min_hole_open = 0.6;     ///< a hole with evidence must see through in at least this share of its samples, 0..1
+    double min_outline_open = 0.5;  ///< the outline band, with evidence, must see past the board in at least this share, 0..1
+    double confident_score = 0.5;   ///< a verified hypothesis scoring at least this ends the search, 0..1
+    int max_hypotheses = 4;         ///< board-sized planes verified per frame at most, most board-like first, >= 1
+
+    void validate() const;  ///< throws ParamError naming the field
+  };
+
+  struct Verdict {
+    bool verified = false;
+    double score = 0.0;  ///< 0..1, higher is more board-like; 0 when rejected
+    std::string reason;  ///< why it was rejected, or a summary of the evidence when verified
+  };
+
+  // Two constructors rather than `Params params = {}` (see PlaneSegmenter).
+  BoardVerifier();
+  explicit BoardVerifier(Params params);
+
+  /// Rejects a hypothesis whose holes (with evidence) are covered or whose
+  /// surface continues beyond the outline; scores the rest by how open the
+  /// holes are, how clear the outline is and how well the rims fit. Missing
+  /// evidence (nothing behind the board in range) neither rejects nor helps.
+  Verdict judge(const BoardEvidence& evidence) const;
+  const Params& params() const { return params_; }
+
+ private:
+  Params params_;
+};
+
+/// What a branch made of one board hypothesis (a plausible plane candidate).
+struct BoardHypothesis {
+  int candidate = -1;      ///< index into PlaneSegmenter::Result::candidates
+  double prior = 0.0;      ///< board-likeness before verification (PlaneCandidate::prior)
+  std::string stage;       ///< stage that rejected it ("discontinuities", "circles", "verify", ...); empty when verified
+  std::string reason;      ///< why it lost, or the verifier's summary when verified
+  BoardEvidence evidence;  ///< gathered once four holes were found
+  bool verified = false;
+  double score = 0.0;      ///< the verifier's score (verified only)
+  bool chosen = false;     ///< the hypothesis the branch kept
+};
+
+}  // namespace l2s

@@ -1,0 +1,71 @@
+#pragma once
+// The hypothesise-then-verify loop shared by the branches (private): plausible
+// plane candidates are tried most board-like first; each branch's `try_one`
+// runs its stages on one candidate, and when four holes are found the
+// BoardVerifier judges the evidence. The best verified hypothesis wins; the
+// search stops early at a confident one. Every hypothesis tried is logged
+// with the stage and reason that decided it.
+
+#include <l2s/board_verifier.hpp>
+#include <l2s/plane_segmenter.hpp>
+
+#include <algorithm>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace l2s::detail {
+
+/// `try_one(BoardHypothesis&)` -> std::optional<Outcome>: the branch's result
+/// when four holes were found (with hypothesis.evidence filled), otherwise
+/// nullopt with hypothesis.stage and .reason set.
+template <class Outcome, class TryOne>
+std::optional<Outcome> search_hypotheses(const PlaneSegmenter::Result& planes, const BoardVerifier& verifier,
+                                         std::vector<BoardHypothesis>& log, TryOne&& try_one) {
+  std::optional<Outcome> best;
+  int best_index = -1;
+  const int tries = std::min<int>(static_cast<int>(planes.ranking.size()), verifier.params().max_hypotheses);
+  for (int k = 0; k < tries; ++k) {
+    BoardHypothesis hypothesis;
+    hypothesis.candidate = planes.ranking[k];
+    hypothesis.prior = planes.candidates[hypothesis.candidate].prior;
+    std::optional<Outcome> outcome = try_one(hypothesis);
+    if (outcome) {
+      const BoardVerifier::Verdict verdict = verifier.judge(hypothesis.evidence);
+      hypothesis.verified = verdict.verified;
+      hypothesis.score = verdict.score;
+      hypothesis.reason = verdict.reason;
+      if (!verdict.verified) hypothesis.stage = "verify";
+      if (verdict.verified && (best_index < 0 || verdict.score > log[best_index].score)) {
+        best = std::move(outcome);
+        best_index = static_cast<int>(log.size());
+      }
+    }
+    log.push_back(std::move(hypothesis));
+    if (best_index >= 0 && log[best_index].score >= verifier.params().confident_score) break;
+  }
+  if (best_index >= 0) {
+    log[best_index].chosen = true;
+    for (BoardHypothesis& other : log)
+      if (other.verified && !other.chosen) {
+        std::ostringstream reason;
+        reason.precision(2);
+        reason << std::fixed << "verified, but scored " << other.score << " against "
+               << log[best_index].score << " (" << other.reason << ")";
+        other.reason = reason.str();
+      }
+  }
+  return best;
+}
+
+/// One line per hypothesis tried, for a branch's failure reason.
+inline std::string describe_failed_search(const std::vector<BoardHypothesis>& log) {
+  std::ostringstream out;
+  out << "none of " << log.size() << " board-sized plane(s) showed the board's holes";
+  for (std::size_t i = 0; i < log.size(); ++i)
+    out << (i ? "; " : ": ") << "plane #" << log[i].candidate << " (" << log[i].stage << ") " << log[i].reason;
+  return out.str();
+}
+
+}  // namespace l2s::detail
