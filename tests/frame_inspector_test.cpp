@@ -60,10 +60,13 @@ TEST_F(FrameInspector, FindsTheBoardOnBothSensorsWithTheCalibratorsCentres) {
   EXPECT_EQ(lidar.plane->candidates[lidar.candidate].inliers.size(), lidar.report.plane_inliers);
   EXPECT_EQ(lidar.discontinuities->edges.size(), lidar.report.edge_points);
   EXPECT_EQ(lidar.cloud.size(), lidar.report.input_points);
-  ASSERT_TRUE(camera.stereo && camera.pass_through && camera.plane && camera.edges &&
-              camera.circles);
+  // The default preset locates the board at low resolution, then matches its region.
+  ASSERT_TRUE(camera.located && camera.stereo && camera.plane && camera.edges && camera.circles);
+  EXPECT_FALSE(camera.located->stereo.disparity.empty());
   EXPECT_FALSE(camera.stereo->disparity.empty());
-  EXPECT_EQ(camera.cloud.size(), camera.report.input_points);
+  EXPECT_LT(camera.stereo->disparity.values.size(), camera.located->stereo.disparity.values.size() * 8);
+  EXPECT_EQ(camera.located->cloud.size(), camera.report.input_points);
+  EXPECT_EQ(camera.board.size(), camera.report.plane_inliers);
   EXPECT_TRUE(camera.T_camera_board_initial.has_value());
   EXPECT_TRUE(camera.refined.has_value());  // the default preset refines the rims
   for (int h = 0; h < 4; ++h) {
@@ -166,7 +169,8 @@ TEST_F(FrameInspector, BlankSceneFailsInTheCameraBranchWithAReason) {
   EXPECT_FALSE(camera.report.found);
   EXPECT_EQ(camera.report.failed_stage, "plane") << camera.report.reason;
   EXPECT_FALSE(camera.report.reason.empty());
-  ASSERT_TRUE(camera.stereo.has_value());
+  ASSERT_TRUE(camera.located.has_value());
+  EXPECT_TRUE(camera.located->stereo.found);
   EXPECT_FALSE(camera.circles.has_value() && camera.circles->found);
   EXPECT_NE(
       describe(camera, params, cameras).find("camera  FAILED at " + camera.report.failed_stage),

@@ -91,14 +91,27 @@ TEST(StereoMatcher, RowDownscaleKeepsTheFullResolutionDepth) {
   }
 }
 
-TEST(StereoMatcher, DepthRangeOutsideSceneGivesReason) {
-  const StereoCamera camera = test::make_stereo_camera();
+TEST(StereoMatcher, SurfaceBeyondTheWorkingRangeMakesNoPlaneAtItsEdge) {
+  // Another rig (fx 985 px): a window fixed in pixels would cover other
+  // depths on it. The wall stands beyond the working range; SGBM clamps what
+  // it cannot match to its search's edge, which must not become a plane of
+  // points at max_depth.
+  test::BoardScene scene;
+  scene.camera = test::make_stereo_camera(1280, 960, 985.0, 0.12);
+  scene.with_board = false;
+  scene.wall_depth = 5.0;
+  scene.noise_sigma = 0.007;
+  const test::StereoPair pair = test::render_pair(scene);
   StereoMatcher::Params params;
-  params.min_depth = 4.0;
-  params.max_depth = 5.0;
-  const StereoMatcher::Result result = StereoMatcher(params).match(wall_pair().left, wall_pair().right, camera);
-  EXPECT_FALSE(result.found);
-  EXPECT_FALSE(result.reason.empty());
+  params.min_depth = 1.0;
+  params.max_depth = 4.0;
+  const StereoMatcher::Result result = StereoMatcher(params).match(pair.left, pair.right, scene.camera);
+  EXPECT_NEAR(result.min_disparity, 985.0 * 0.12 / 4.0, 1e-9);  // the window follows the rig
+  EXPECT_NEAR(result.max_disparity, 985.0 * 0.12 / 1.0, 1e-9);
+  std::size_t at_edge = 0;
+  for (const auto& p : result.cloud.points) at_edge += p.z() > 0.97 * params.max_depth ? 1 : 0;
+  EXPECT_LT(at_edge, 1280u * 960u / 100u) << result.cloud.size() << " points, " << result.window_edge << " dropped";
+  EXPECT_GT(result.window_edge, 1280u * 960u / 2u);
 }
 
 TEST(StereoMatcher, RejectsInvalidParamsAndMismatchedImages) {

@@ -15,6 +15,7 @@
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
 #include <l2s/registrar.hpp>
+#include <l2s/stereo_board_locator.hpp>
 #include <l2s/stereo_matcher.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -63,9 +64,11 @@ class Calibrator {
     CircleFinder::Params lidar_circles;
     BoardVerifier::Params lidar_verifier;  ///< which board-sized plane is the board (holes seen through, outline clear)
     // Camera branch: stereo, pass-through, plane, Sobel edges, circles, rim refinement.
-    StereoMatcher::Params stereo;
+    StereoMatcher::Params stereo;  ///< full-resolution matching; its depth range is the working range of the camera branch
     PassThroughFilter::Params camera_pass_through;
-    PlaneSegmenter::Params camera_plane = PlaneSegmenter::Params::stereo();
+    bool locate_board = true;  ///< find the board at low resolution first, then match only its region and depth band (false: one full-frame pass, as the paper)
+    StereoBoardLocator::Params locator;  ///< the coarse pass (locate_board)
+    PlaneSegmenter::Params camera_plane = PlaneSegmenter::Params::stereo();  ///< full-frame candidates; with locate_board, its inlier_threshold bounds the board points of a region
     EdgeFilter::Params edges;
     CircleFinder::Params camera_circles;
     BoardVerifier::Params camera_verifier;

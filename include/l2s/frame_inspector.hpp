@@ -29,16 +29,25 @@ struct LidarInspection {
 
 /// Every stage of the camera branch for one stereo pair (see LidarInspection).
 struct CameraInspection {
-  BranchReport report;                          ///< what Calibrator::add reports for this pair
-  std::optional<StereoMatcher::Result> stereo;  ///< disparity and the whole stereo cloud
-  std::optional<PassThroughFilter::Result> pass_through;  ///< indices into stereo->cloud
-  StereoCloud cloud;  ///< stereo points after pass-through: what the later stages index
-  std::optional<PlaneSegmenter::Result> plane;  ///< inliers index `cloud`
+  BranchReport report;  ///< what Calibrator::add reports for this pair
+  std::optional<StereoBoardLocator::Result> located;  ///< the coarse pass and its regions (locate_board)
+  /// Full-resolution matching: the whole frame (locate_board off), or the
+  /// region of the hypothesis shown below.
+  std::optional<StereoMatcher::Result> stereo;
+  std::optional<PassThroughFilter::Result> pass_through;  ///< full frame only: indices into stereo->cloud
+  StereoCloud cloud;  ///< full frame only: stereo points after pass-through, what `plane` indexes
+  /// Board candidates: of the coarse cloud (located->cloud) or of `cloud`.
+  std::optional<PlaneSegmenter::Result> plane;
+  std::vector<BoardHypothesis> hypotheses;  ///< board-sized planes tried, in order, and their fate
+  /// The stages run on the chosen hypothesis (or, when none was chosen, on the
+  /// first one tried). `candidate` indexes plane->candidates, -1 when none.
+  int candidate = -1;
+  StereoCloud board;  ///< its board-plane points at full resolution
+  Plane board_plane;  ///< their plane
   std::optional<EdgeFilter::Result> edges;
   std::optional<CircleFinder::Result> circles;
-  std::optional<Eigen::Isometry3d>
-      T_camera_board_initial;                       ///< pose from the circles, refiner's start
-  std::optional<BoardPoseRefiner::Result> refined;  ///< only when params.refine_camera_pose
+  std::optional<Eigen::Isometry3d> T_camera_board_initial;  ///< pose from the circles, refiner's start
+  std::optional<BoardPoseRefiner::Result> refined;          ///< only when params.refine_camera_pose
 };
 
 /// Runs the lidar branch on one sweep and keeps every stage's result.
@@ -73,7 +82,8 @@ Image render_lidar_inspection(const LidarInspection& inspection, const Target& t
 Image render_camera_inspection(const Image& left, const CameraInspection& inspection,
                                const StereoCamera& cameras, const Target& target);
 
-/// The disparity map of a camera inspection, colour-coded (near red, far blue;
+/// The disparity map of a camera inspection's whole frame (the coarse pass
+/// when the board was located first), colour-coded (near red, far blue;
 /// black = no match), at the resolution SGBM ran at. Empty when stereo did not run.
 Image render_disparity(const CameraInspection& inspection);
 

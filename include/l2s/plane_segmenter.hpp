@@ -51,6 +51,11 @@ class PlaneSegmenter {
     double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height, 0..1
     double min_height_fraction = 0.15;  ///< patch height must reach this fraction of the board height, 0..1
     double isolation_band = 0.2;       ///< [m] width of the band around a patch searched for coplanar points, > 0
+    /// [1/m] Stereo clouds: depth noise grows with depth, sigma_z = depth_noise * z^2
+    /// (disparity sigma / fx * B; StereoMatcher::Result::depth_noise). The
+    /// consensus and inlier thresholds grow to 2 and 3 sigma_z where that is
+    /// larger, so one setting fits every rig and distance. 0 = fixed (lidar), >= 0
+    double depth_noise = 0.0;
     std::uint64_t seed = 42;           ///< random generator seed; same seed, same result
 
     void validate() const;  ///< throws ParamError naming the field

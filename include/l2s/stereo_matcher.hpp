@@ -36,7 +36,12 @@ struct DisparityMap {
 };
 
 /// Semi-Global Matching (cv::StereoSGBM) on a rectified pair, then
-/// triangulation Z = fx * B / d into the left optical frame.
+/// triangulation Z = fx * B / d into the left optical frame. The disparity
+/// search follows the rig: it spans exactly the depths min_depth..max_depth
+/// for the fx * B of the cameras given to match(), so the working range means
+/// the same on every rig. Matches at the edge of that window (the true match
+/// lies outside it: SGBM clamps), or failing SGBM's left-right or uniqueness
+/// checks, give no point.
 class StereoMatcher {
  public:
   /// Cost aggregation paths of SGBM: 5 (single pass), 8 (two passes, slow),
@@ -44,8 +49,6 @@ class StereoMatcher {
   enum class Mode { Sgbm5, Hh8, Sgbm3Way, Hh4 };
 
   struct Params {
-    int min_disparity = 32;    ///< [px] smallest disparity searched (full resolution); 32 px = 6.1 m at fx 1626, B 0.12
-    int num_disparities = 96;  ///< [px] search range (full resolution), > 0, rounded up to 16 after scaling; 32..128 = 6.1..1.5 m
     int block_size = 5;        ///< [px] odd matching window, 1..11
     int p1 = 0;                ///< smoothness penalty for +-1 px disparity steps; 0 = 8 * block_size^2
     int p2 = 0;                ///< penalty for larger disparity steps, > p1; 0 = 32 * block_size^2
@@ -58,9 +61,11 @@ class StereoMatcher {
     double downscale = 1.0;    ///< processing scale of columns and rows, (0, 1]; 0.5 matches at half resolution (~6x faster), but SGBM's sub-pixel disparity locks to whole (coarser) pixels: a slanted board becomes terraces of ~2 cm at 3.5 m
     double row_downscale = 1.0;  ///< further scale of the rows only, (0, 1]; rows carry no disparity, so 0.5 halves the cost while depth keeps the column resolution
     PixelRect roi;             ///< [px] part of the left image to match; empty = all
-    double min_depth = 0.5;    ///< [m] points closer than this are dropped, > 0
-    double max_depth = 10.0;   ///< [m] points farther than this are dropped, > min_depth
+    double min_depth = 1.0;    ///< [m] nearest depth searched: the largest disparity is fx * B / min_depth, > 0
+    double max_depth = 10.0;   ///< [m] farthest depth searched: the smallest disparity is fx * B / max_depth, > min_depth
+    double guard_px = 8.0;     ///< [px] the search reaches this far (full resolution) beyond the window on each side and drops what it finds there: a surface just outside the working range matches there instead of aliasing into the window, >= 0
     int stride = 1;            ///< [cells] keep every stride-th cell in x and y of the cloud, >= 1
+    double disparity_sigma = 0.25;  ///< [px] SGBM's disparity noise at the matched resolution (sets Result::depth_noise), > 0
 
     /// Throws ParamError naming the first invalid field.
     void validate() const;
@@ -71,6 +76,10 @@ class StereoMatcher {
     std::string reason;        ///< why not, when !found
     DisparityMap disparity;    ///< the raw disparity, for diagnostics
     StereoCloud cloud;         ///< [m] left optical frame, each point with its left pixel
+    double min_disparity = 0.0;  ///< [px] full-resolution window searched (from max_depth) ...
+    double max_disparity = 0.0;  ///< [px] ... to (from min_depth)
+    std::size_t window_edge = 0;  ///< matches dropped outside the window (guard band or clamped at the search's edge)
+    double depth_noise = 0.0;    ///< [1/m] depth sigma of a point at depth z is depth_noise * z^2 (disparity_sigma / (downscale * fx * B))
     double match_ms = 0.0;     ///< [ms] time spent inside SGBM
     double total_ms = 0.0;     ///< [ms] whole call
   };

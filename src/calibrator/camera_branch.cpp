@@ -1,11 +1,15 @@
 #include "calibrator/branches.hpp"
 
-#include <l2s/io/image_io.hpp>
-
+#include "camera/cv_image.hpp"
 #include "detail/board_frame.hpp"
+#include "plane/plane_fit.hpp"
+#include "verify/hypothesis_search.hpp"
+#include "verify/stereo_evidence.hpp"
 
 namespace l2s::detail {
 namespace {
+
+const Eigen::Vector3d kUpOptical(0.0, -1.0, 0.0);
 
 BranchReport fail(BranchReport report, const char* stage, const std::string& reason) {
   report.found = false;
@@ -25,6 +29,178 @@ StereoCloud subset(const StereoCloud& cloud, const std::vector<std::size_t>& ind
   return out;
 }
 
+/// The points of `cloud` within `band` of `plane` (or 3 sigma of their depth
+/// noise, where larger), after refitting the plane to them twice (the first
+/// slice leans towards the plane it was cut with).
+StereoCloud board_points(const StereoCloud& cloud, double band, double depth_noise, Plane& plane) {
+  std::vector<std::size_t> near;
+  for (double factor : {2.0, 1.0, 1.0}) {
+    near.clear();
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      const Eigen::Vector3d& p = cloud.points[i];
+      if (std::abs(plane.signedDistance(p)) <= factor * std::max(band, 3.0 * depth_noise * p.squaredNorm()))
+        near.push_back(i);
+    }
+    if (near.size() < 3) break;
+    plane = facing_origin(fit_plane(cloud.points, near));
+  }
+  return subset(cloud, near);
+}
+
+/// The stages run on one board hypothesis.
+struct CameraAttempt {
+  int candidate = -1;
+  std::optional<StereoMatcher::Result> stereo;  // the region's full-resolution pass (located only)
+  StereoCloud board;
+  Plane plane;
+  EdgeFilter::Result edges;
+  CircleFinder::Result circles;
+};
+
+/// The frame-wide data every hypothesis of one pair is tested against.
+struct CameraFrame {
+  const Image& left;
+  const Image& right;
+  cv::Mat left_gray, right_gray;
+  const StereoCamera& cameras;
+  const Target& target;
+  const Calibrator::Params& params;
+};
+
+/// Board points, edges, circles and the images' evidence for one hypothesis:
+/// with a located board, from a full-resolution pass over its region; else
+/// from the full-frame cloud's candidate.
+class CameraHypothesisTester {
+ public:
+  CameraHypothesisTester(const CameraFrame& frame, const PlaneSegmenter::Result& planes,
+                         const StereoBoardLocator::Result* located, const StereoCloud* full_cloud)
+      : f_(frame), planes_(planes), located_(located), full_cloud_(full_cloud) {}
+
+  std::optional<CameraAttempt> operator()(BoardHypothesis& hypothesis) {
+    CameraAttempt attempt;
+    attempt.candidate = hypothesis.candidate;
+    const bool ok = collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis);
+    if (!first_) first_ = attempt;
+    if (!ok) return std::nullopt;
+    hypothesis.evidence = stereo_evidence(f_.left_gray, f_.right_gray, f_.cameras,
+                                          board_pose_from_centers(attempt.circles.centers, attempt.plane),
+                                          f_.target, f_.params.camera_verifier);
+    hypothesis.evidence.fit_rms = attempt.circles.rms;
+    hypothesis.evidence.fit_scale = f_.params.camera_circles.inlier_threshold;
+    return attempt;
+  }
+
+  const std::optional<CameraAttempt>& first() const { return first_; }
+
+ private:
+  bool stop(BoardHypothesis& hypothesis, const char* stage, const std::string& reason) {
+    hypothesis.stage = stage;
+    hypothesis.reason = reason;
+    return false;
+  }
+
+  bool collect_board(CameraAttempt& attempt, BoardHypothesis& hypothesis) {
+    const PlaneCandidate& candidate = planes_.candidates[attempt.candidate];
+    attempt.plane = candidate.plane;
+    if (!located_) {
+      attempt.board = subset(*full_cloud_, candidate.inliers);
+      return true;
+    }
+    const auto region = std::find_if(located_->regions.begin(), located_->regions.end(),
+                                     [&](const auto& r) { return r.candidate == attempt.candidate; });
+    StereoMatcher::Params fine = f_.params.stereo;
+    fine.roi = region->roi;
+    fine.min_depth = std::max(fine.min_depth, region->min_depth);
+    fine.max_depth = std::min(fine.max_depth, region->max_depth);
+    attempt.stereo = StereoMatcher(fine).match(f_.left, f_.right, f_.cameras);
+    if (!attempt.stereo->found) return stop(hypothesis, "stereo", "region: " + attempt.stereo->reason);
+    const StereoCloud& cloud = attempt.stereo->cloud;
+    const auto kept = PassThroughFilter(f_.params.camera_pass_through).filter(cloud.points);
+    attempt.board = board_points(subset(cloud, kept.kept), f_.params.camera_plane.inlier_threshold,
+                                 attempt.stereo->depth_noise, attempt.plane);
+    if (attempt.board.size() < 3) return stop(hypothesis, "plane", "no board-plane points at full resolution");
+    return true;
+  }
+
+  bool find_holes(CameraAttempt& attempt, BoardHypothesis& hypothesis) {
+    attempt.edges = EdgeFilter(f_.params.edges).filter(f_.left, attempt.board, attempt.plane, f_.target);
+    if (!attempt.edges.found) return stop(hypothesis, "edges", attempt.edges.reason);
+    attempt.circles = CircleFinder(f_.params.camera_circles)
+                          .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target);
+    if (!attempt.circles.found) return stop(hypothesis, "circles", attempt.circles.reason);
+    return true;
+  }
+
+  const CameraFrame& f_;
+  const PlaneSegmenter::Result& planes_;
+  const StereoBoardLocator::Result* located_;
+  const StereoCloud* full_cloud_;
+  std::optional<CameraAttempt> first_;
+};
+
+void keep_stages(CameraInspection& t, const CameraAttempt& attempt) {
+  t.candidate = attempt.candidate;
+  if (attempt.stereo) t.stereo = attempt.stereo;
+  t.board = attempt.board;
+  t.board_plane = attempt.plane;
+  if (!attempt.board.points.empty()) t.edges = attempt.edges;
+  if (attempt.edges.found) t.circles = attempt.circles;
+}
+
+/// The candidates of the frame: located at low resolution, or segmented in
+/// one full-frame cloud. Empty optional and a failed report when none.
+const PlaneSegmenter::Result* find_candidates(const CameraFrame& f, CameraInspection& t, BranchReport& report) {
+  if (f.params.locate_board) {
+    const auto& located = t.located.emplace(StereoBoardLocator(f.params.locator)
+                                                .locate(f.left, f.right, f.cameras, f.target, f.params.stereo,
+                                                        f.params.camera_pass_through));
+    report.input_points = located.cloud.size();
+    if (!located.found) {
+      report = fail(report, located.stereo.found ? "plane" : "stereo", located.reason);
+      return nullptr;
+    }
+    return &t.plane.emplace(located.plane);
+  }
+  const auto& stereo = t.stereo.emplace(StereoMatcher(f.params.stereo).match(f.left, f.right, f.cameras));
+  if (!stereo.found) {
+    report = fail(report, "stereo", stereo.reason);
+    return nullptr;
+  }
+  const auto& kept = t.pass_through.emplace(PassThroughFilter(f.params.camera_pass_through).filter(stereo.cloud.points));
+  t.cloud = subset(stereo.cloud, kept.kept);
+  report.input_points = t.cloud.size();
+  if (t.cloud.size() < 3) {
+    report = fail(report, "pass_through", "no stereo points inside the pass-through limits");
+    return nullptr;
+  }
+  PlaneSegmenter::Params plane = f.params.camera_plane;
+  plane.depth_noise = stereo.depth_noise;
+  const auto& planes = t.plane.emplace(PlaneSegmenter(plane).segment(t.cloud.points, f.target));
+  if (!planes.found) {
+    report = fail(report, "plane", planes.reason);
+    return nullptr;
+  }
+  return &planes;
+}
+
+/// The default preset's last step: the board pose fitted to the hole rims in both images.
+void refine(const CameraFrame& f, CameraInspection& t, BranchReport& report) {
+  const auto& T_camera_board = t.T_camera_board_initial.emplace(board_pose_from_centers(report.centers, t.board_plane));
+  if (!f.params.refine_camera_pose) return;
+  const auto& refined = t.refined.emplace(
+      BoardPoseRefiner(f.params.board_refiner).refine(f.left, f.right, f.cameras, f.target, T_camera_board));
+  // A refinement that stops on its round limit is usually still close (rms
+  // ~0.1 px); keeping the stereo circles for such frames measured better on
+  // the simulated suite than dropping them, and the accumulator's median
+  // keeps the refined majority in charge.
+  if (refined.converged) {
+    report.centers = refined.centers;
+    report.fit_rms = refined.rms_px;
+  } else {
+    report.note = "rim refinement did not converge (" + refined.reason + "); stereo circles kept";
+  }
+}
+
 }  // namespace
 
 BranchReport run_camera_branch(const Image& left, const Image& right, const StereoCamera& cameras,
@@ -33,53 +209,26 @@ BranchReport run_camera_branch(const Image& left, const Image& right, const Ster
   CameraInspection local;
   CameraInspection& t = trace ? *trace : local;
   BranchReport report;
-  const auto& stereo = t.stereo.emplace(StereoMatcher(params.stereo).match(left, right, cameras));
-  if (!stereo.found) return fail(report, "stereo", stereo.reason);
+  const CameraFrame frame{left, right, gray_mat(left, "left"), gray_mat(right, "right"), cameras, target, params};
+  const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
+  if (!planes) return report;
 
-  const auto& kept = t.pass_through.emplace(
-      PassThroughFilter(params.camera_pass_through).filter(stereo.cloud.points));
-  const StereoCloud& cloud = t.cloud = subset(stereo.cloud, kept.kept);
-  report.input_points = cloud.size();
-  if (cloud.size() < 3)
-    return fail(report, "pass_through", "no stereo points inside the pass-through limits");
-
-  const auto& plane =
-      t.plane.emplace(PlaneSegmenter(params.camera_plane).segment(cloud.points, target));
-  report.plane_inliers = plane.inliers.size();
-  if (!plane.found) return fail(report, "plane", plane.reason);
-
-  const auto& edges = t.edges.emplace(
-      EdgeFilter(params.edges).filter(left, subset(cloud, plane.inliers), plane.plane, target));
-  report.edge_points = edges.edges.size();
-  if (!edges.found) return fail(report, "edges", edges.reason);
-
-  const Eigen::Vector3d up_optical(0.0, -1.0, 0.0);
-  const auto& circles =
-      t.circles.emplace(CircleFinder(params.camera_circles)
-                            .find(edges.edges.points, plane.plane, up_optical, target));
-  report.fit_rms = circles.rms;
-  if (!circles.found) return fail(report, "circles", circles.reason);
-  report.centers = circles.centers;
-  report.found = true;
-
-  if (params.refine_camera_pose) {
-    const auto& T_camera_board =
-        t.T_camera_board_initial.emplace(board_pose_from_centers(circles.centers, plane.plane));
-    const auto& refined = t.refined.emplace(BoardPoseRefiner(params.board_refiner)
-                                                .refine(left, right, cameras, target, T_camera_board));
-    // A refinement that stops on its round limit is usually still close (rms
-    // ~0.1 px); keeping the stereo circles for such frames measured better on
-    // the simulated suite than dropping them, and the accumulator's median
-    // keeps the refined majority in charge.
-    if (refined.converged) {
-      report.centers = refined.centers;
-      report.fit_rms = refined.rms_px;
-    } else {
-      report.note = "rim refinement did not converge (" + refined.reason + "); stereo circles kept";
-    }
-  } else if (trace) {
-    t.T_camera_board_initial = board_pose_from_centers(circles.centers, plane.plane);
+  CameraHypothesisTester tester(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
+  const std::optional<CameraAttempt> best =
+      search_hypotheses<CameraAttempt>(*planes, BoardVerifier(params.camera_verifier), t.hypotheses, tester);
+  report.hypotheses = static_cast<int>(t.hypotheses.size());
+  if (!best) {
+    if (tester.first()) keep_stages(t, *tester.first());
+    return fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
   }
+  keep_stages(t, *best);
+  report.plane_inliers = best->board.size();
+  report.edge_points = best->edges.edges.size();
+  report.fit_rms = best->circles.rms;
+  report.hole_radius = best->circles.radius;
+  report.centers = best->circles.centers;
+  report.found = true;
+  refine(frame, t, report);
   return report;
 }
 

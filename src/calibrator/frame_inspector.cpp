@@ -181,6 +181,24 @@ const char* placement_name(DiscontinuityFilter::EdgePlacement placement) {
                                                                    : "last board point";
 }
 
+
+void describe_stereo(std::string& out, const std::optional<StereoMatcher::Result>& result,
+                     const StereoMatcher::Params& p, const StereoCamera& cameras, const char* name) {
+  if (!result) return;
+  const auto& s = *result;
+  const std::size_t cells = s.disparity.values.size();
+  const auto matched = std::count_if(s.disparity.values.begin(), s.disparity.values.end(),
+                                     [](float d) { return std::isfinite(d); });
+  append(out, "  %-16s %ld of %zu disparity cells matched (%.0f%%) -> %zu points; SGBM %.0f ms%s%s\n", name,
+         static_cast<long>(matched), cells, cells ? 100.0 * matched / cells : 0.0, s.cloud.size(), s.match_ms,
+         s.found ? "" : ": ", s.found ? "" : s.reason.c_str());
+  append(out,
+         "                   [stereo: working range %.2f..%.2f m; searched disparity %.1f..%.1f px on this rig "
+         "(fx*B %.1f px m), %zu matches at the window's edge dropped, block_size %d, row_downscale %.2f]\n",
+         p.min_depth, p.max_depth, s.min_disparity, s.max_disparity, cameras.left.fx() * cameras.baseline(),
+         s.window_edge, p.block_size, p.row_downscale);
+}
+
 }  // namespace
 
 LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
@@ -256,29 +274,29 @@ std::string describe(const CameraInspection& in, const Calibrator::Params& param
   describe_status(out, "camera", in.report);
   const Eigen::Vector3d up_optical(0.0, -1.0, 0.0);
 
-  if (in.stereo) {
-    const auto& s = *in.stereo;
-    const auto& p = params.stereo;
-    const std::size_t cells = s.disparity.values.size();
-    const auto matched = std::count_if(s.disparity.values.begin(), s.disparity.values.end(),
-                                       [](float d) { return std::isfinite(d); });
+  if (in.located) {
+    const auto& l = *in.located;
     append(out,
-           "  stereo           %ld of %zu disparity cells matched (%.0f%%) -> %zu points; SGBM "
-           "%.0f ms%s%s\n",
-           static_cast<long>(matched), cells, cells ? 100.0 * matched / cells : 0.0, s.cloud.size(),
-           s.match_ms, s.found ? "" : ": ", s.found ? "" : s.reason.c_str());
-    // Depth = fx * B / d: the search range in metres is what a user can check.
-    const double fxb = cameras.left.fx() * cameras.baseline();
-    const int d_min = std::max(1, p.min_disparity), d_max = p.min_disparity + p.num_disparities;
-    append(out,
-           "                   [stereo: min_disparity %d px, num_disparities %d px (depths "
-           "%.2f..%.2f m), block_size %d, downscale %.2f, row_downscale %.2f, depth %.2f..%.2f m]\n",
-           p.min_disparity, p.num_disparities, fxb / d_max, fxb / d_min, p.block_size, p.downscale,
-           p.row_downscale, p.min_depth, p.max_depth);
+           "  coarse search    scale %.2f: %zu stereo points (SGBM %.0f ms), %zu after pass-through, "
+           "%zu region(s) to match at full resolution%s%s\n",
+           l.scale, l.stereo.cloud.size(), l.stereo.match_ms, l.cloud.size(), l.regions.size(),
+           l.found ? "" : ": ", l.found ? "" : l.reason.c_str());
+    for (const auto& r : l.regions)
+      append(out, "    plane #%-2d      region x %d..%d, y %d..%d px, depth %.2f..%.2f m\n", r.candidate,
+             r.roi.x, r.roi.x + r.roi.width - 1, r.roi.y, r.roi.y + r.roi.height - 1, r.min_depth, r.max_depth);
+    append(out, "                   [locator: coarse_width %.0f px, min_board_px %.0f, region_margin %.2f m, "
+           "depth_margin %.2f m]\n", params.locator.coarse_width, params.locator.min_board_px,
+           params.locator.region_margin, params.locator.depth_margin);
   }
+  describe_stereo(out, in.stereo, params.stereo, cameras, in.located ? "region stereo" : "stereo");
   describe_pass_through(out, in.pass_through, in.stereo ? in.stereo->cloud.size() : 0,
                         params.camera_pass_through, "camera_pass_through");
-  describe_plane(out, in.plane, params.camera_plane, "camera_plane");
+  describe_plane(out, in.plane, in.located ? params.locator.plane : params.camera_plane,
+                 in.located ? "locator.plane" : "camera_plane");
+  describe_hypotheses(out, in.hypotheses, params.camera_verifier, "camera_verifier");
+  if (in.candidate >= 0)
+    append(out, "  (stages below ran on plane #%d, %s: %zu board-plane points at full resolution)\n",
+           in.candidate, in.report.found ? "the chosen hypothesis" : "the most board-like one", in.board.size());
 
   if (in.edges) {
     const auto& e = *in.edges;
@@ -294,9 +312,9 @@ std::string describe(const CameraInspection& in, const Calibrator::Params& param
            p.sobel_threshold, p.magnitude == EdgeFilter::Magnitude::Hypot ? "hypot" : "half-L1",
            yes_no(p.remove_border_lines), p.line_distance, p.max_border_lines, p.min_line_points);
   }
-  if (in.circles && in.plane) {
-    const Eigen::Vector3d centre = detail::centroid(in.cloud.points, in.plane->inliers);
-    describe_circles(out, in.circles, in.plane->plane, up_optical, centre, params.camera_circles,
+  if (in.circles) {
+    const Eigen::Vector3d centre = detail::centroid(in.board.points, {});
+    describe_circles(out, in.circles, in.board_plane, up_optical, centre, params.camera_circles,
                      "camera_circles", 1e3, "mm");
   }
   if (in.refined) {

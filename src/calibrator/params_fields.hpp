@@ -33,7 +33,7 @@ void visit(V& v, PlaneSegmenter::Params& p) {
   v.field("patch_gap_vertical", p.patch_gap_vertical);
   v.field("size_tolerance", p.size_tolerance);
   v.field("min_height_fraction", p.min_height_fraction);
-  v.field("isolation_band", p.isolation_band);
+  v.field("isolation_band", p.isolation_band);  // depth_noise: set per frame by the camera branch
   v.field("seed", p.seed);
 }
 
@@ -79,8 +79,6 @@ void visit(V& v, BoardVerifier::Params& p) {
 template <class V>
 void visit(V& v, StereoMatcher::Params& p) {
   using M = StereoMatcher::Mode;
-  v.field("min_disparity", p.min_disparity);
-  v.field("num_disparities", p.num_disparities);
   v.field("block_size", p.block_size);
   v.field("p1", p.p1);
   v.field("p2", p.p2);
@@ -100,6 +98,8 @@ void visit(V& v, StereoMatcher::Params& p) {
   });
   v.field("min_depth", p.min_depth);
   v.field("max_depth", p.max_depth);
+  v.field("guard_px", p.guard_px);
+  v.field("disparity_sigma", p.disparity_sigma);
   v.field("stride", p.stride);
 }
 

@@ -110,12 +110,24 @@ double board_prior(const PlaneCandidate& c, const Target& target, double size_to
   return (1.0 - 0.5 * std::min(1.0, size_error)) * (0.5 + 0.5 * height) * (1.0 - 0.9 * c.isolation);
 }
 
+/// The distances that count as "on the plane", per point: fixed, or growing
+/// with the depth noise of a stereo cloud.
+struct Thresholds {
+  double distance, inlier, noise;
+  explicit Thresholds(const PlaneSegmenter::Params& p)
+      : distance(p.distance_threshold), inlier(p.inlier_threshold), noise(p.depth_noise) {}
+  double consensus(const Eigen::Vector3d& p) const { return std::max(distance, 2.0 * noise * p.squaredNorm()); }
+  double inliers(const Eigen::Vector3d& p) const { return std::max(inlier, 3.0 * noise * p.squaredNorm()); }
+};
+
 struct Samples {
   std::vector<std::size_t> finite;      // indices of the finite input points
   std::vector<Eigen::Vector3d> points;  // random subset in random order (RANSAC pre-scores a prefix)
+  std::vector<double> tolerance;        // consensus distance of each sample
 };
 
-Samples draw_samples(const std::vector<Eigen::Vector3d>& points, std::size_t max_samples, std::mt19937_64& rng) {
+Samples draw_samples(const std::vector<Eigen::Vector3d>& points, std::size_t max_samples, const Thresholds& t,
+                     std::mt19937_64& rng) {
   Samples s;
   s.finite.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -126,17 +138,21 @@ Samples draw_samples(const std::vector<Eigen::Vector3d>& points, std::size_t max
     std::swap(s.finite[i], s.finite[pick(rng)]);
   }
   s.points.resize(count);
-  for (std::size_t i = 0; i < count; ++i) s.points[i] = points[s.finite[i]];
+  s.tolerance.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    s.points[i] = points[s.finite[i]];
+    s.tolerance[i] = t.consensus(s.points[i]);
+  }
   return s;
 }
 
 /// The RANSAC hypothesis refit on its sample consensus, unless the refit leaves the cone.
-Plane refit_hypothesis(const Plane& hypothesis, const std::vector<Eigen::Vector3d>& samples,
-                       const PlaneSegmenter::Params& params, double max_sin_axis) {
+Plane refit_hypothesis(const Plane& hypothesis, const Samples& samples, const PlaneSegmenter::Params& params,
+                       double max_sin_axis) {
   std::vector<std::size_t> consensus;
-  for (std::size_t i = 0; i < samples.size(); ++i)
-    if (std::abs(hypothesis.signedDistance(samples[i])) <= params.distance_threshold) consensus.push_back(i);
-  Plane plane = detail::fit_plane(samples, consensus);
+  for (std::size_t i = 0; i < samples.points.size(); ++i)
+    if (std::abs(hypothesis.signedDistance(samples.points[i])) <= samples.tolerance[i]) consensus.push_back(i);
+  Plane plane = detail::fit_plane(samples.points, consensus);
   if (std::abs(plane.normal().dot(params.axis)) > max_sin_axis) plane = hypothesis;
   return detail::facing_origin(plane);
 }
@@ -154,16 +170,17 @@ void refit(Extraction& e, const std::vector<Eigen::Vector3d>& points, const std:
   // within delta_inliers (a thin consensus slice of a noisy stereo cloud leans
   // towards the hypothesis it was cut with).
   PlaneCandidate& c = e.candidate;
+  const Thresholds t(params);
   const auto in_patch = [&](std::size_t i) { return detail::in_patch(grid, e.patch, points[i]); };
   std::vector<std::size_t> near;  // patch points within a generous slab: the passes choose among them
   for (std::size_t i : finite)
-    if (std::abs(c.plane.signedDistance(points[i])) <= 2.0 * params.inlier_threshold && in_patch(i))
+    if (std::abs(c.plane.signedDistance(points[i])) <= 2.0 * t.inliers(points[i]) && in_patch(i))
       near.push_back(i);
   Plane plane = detail::facing_origin(detail::fit_plane(points, patch_consensus));
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<std::size_t> wide;
     for (std::size_t i : near)
-      if (std::abs(plane.signedDistance(points[i])) <= params.inlier_threshold) wide.push_back(i);
+      if (std::abs(plane.signedDistance(points[i])) <= t.inliers(points[i])) wide.push_back(i);
     if (wide.size() < 3) break;
     plane = detail::facing_origin(detail::fit_plane(points, wide));
   }
@@ -172,19 +189,20 @@ void refit(Extraction& e, const std::vector<Eigen::Vector3d>& points, const std:
   c.plane = plane;
   c.rms = std::sqrt(sum_sq / static_cast<double>(patch_consensus.size()));
   for (std::size_t i : near)
-    if (std::abs(plane.signedDistance(points[i])) <= params.inlier_threshold) c.inliers.push_back(i);
+    if (std::abs(plane.signedDistance(points[i])) <= t.inliers(points[i])) c.inliers.push_back(i);
   std::sort(c.inliers.begin(), c.inliers.end());
 }
 
 Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& points,
-                   const std::vector<std::size_t>& finite, const std::vector<Eigen::Vector3d>& samples,
+                   const std::vector<std::size_t>& finite, const Samples& samples,
                    const Target& target, const PlaneSegmenter::Params& params) {
   Extraction e;
   PlaneCandidate& c = e.candidate;
   c.plane = plane;
+  const Thresholds t(params);
   std::vector<Eigen::Vector3d> on_plane;
-  for (const Eigen::Vector3d& p : samples)
-    if (std::abs(plane.signedDistance(p)) <= params.distance_threshold) on_plane.push_back(p);
+  for (std::size_t i = 0; i < samples.points.size(); ++i)
+    if (std::abs(plane.signedDistance(samples.points[i])) <= samples.tolerance[i]) on_plane.push_back(samples.points[i]);
   const detail::PlaneGrid grid(plane, params.axis, params.patch_gap_horizontal, params.patch_gap_vertical);
   // The window allows the board's size plus tolerance, horizontally long.
   const double tol = 1.0 + params.size_tolerance;
@@ -200,7 +218,7 @@ Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& point
   IsolationCounter around(e.patch.box, params.isolation_band);
   std::vector<std::size_t> patch_consensus;
   for (std::size_t i : finite) {
-    if (std::abs(plane.signedDistance(points[i])) > params.distance_threshold) continue;
+    if (std::abs(plane.signedDistance(points[i])) > t.consensus(points[i])) continue;
     ++c.support;
     const Eigen::Vector2d uv = grid.to_plane(points[i]);
     around.add(uv);
@@ -263,6 +281,7 @@ void PlaneSegmenter::Params::validate() const {
   if (!(min_height_fraction >= 0.0 && min_height_fraction <= 1.0))
     throw ParamError("min_height_fraction", "must be in [0, 1]");
   positive(isolation_band, "isolation_band");
+  if (!(depth_noise >= 0.0) || !std::isfinite(depth_noise)) throw ParamError("depth_noise", "must be >= 0 (1/m)");
 }
 
 PlaneSegmenter::Params PlaneSegmenter::Params::lidar() { return Params{}; }
@@ -290,7 +309,8 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
   target.validate();
   Result result;
   std::mt19937_64 rng(params_.seed);
-  Samples s = draw_samples(points, params_.max_samples, rng);
+  const Thresholds thresholds(params_);
+  Samples s = draw_samples(points, params_.max_samples, thresholds, rng);
   if (s.finite.size() < params_.min_support) {
     result.reason = "only " + std::to_string(s.finite.size()) + " finite points";
     return result;
@@ -301,26 +321,29 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
   ransac.axis = params_.axis;
   ransac.max_iterations = params_.max_iterations;
   ransac.sample_radius = params_.sample_radius;
+  ransac.tolerance = &s.tolerance;
 
-  std::vector<Eigen::Vector3d>& samples = s.points;
-  for (int k = 0; k < params_.max_candidates && samples.size() >= 3; ++k) {
-    const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(samples, ransac, rng);
+  for (int k = 0; k < params_.max_candidates && s.points.size() >= 3; ++k) {
+    const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(s.points, ransac, rng);
     if (!found.found) break;
-    const Plane plane = refit_hypothesis(found.plane, samples, params_, ransac.max_sin_axis);
-    Extraction e = measure(plane, points, s.finite, samples, target, params_);
+    const Plane plane = refit_hypothesis(found.plane, s, params_, ransac.max_sin_axis);
+    Extraction e = measure(plane, points, s.finite, s, target, params_);
     const bool too_small = e.candidate.support < params_.min_support;
     result.candidates.push_back(std::move(e.candidate));
     if (too_small) break;  // candidates come in decreasing support: none left can be the board
     // Drop this patch (thick surfaces too: inlier_threshold) and look again.
     const Plane& cut = result.candidates.back().plane;
     const detail::PlaneGrid grid(cut, params_.axis, params_.patch_gap_horizontal, params_.patch_gap_vertical);
-    std::vector<Eigen::Vector3d> rest;
-    rest.reserve(samples.size());
-    for (const Eigen::Vector3d& p : samples)
-      if (std::abs(cut.signedDistance(p)) > params_.inlier_threshold || !detail::in_patch(grid, e.patch, p))
-        rest.push_back(p);
-    if (rest.size() == samples.size()) break;
-    samples.swap(rest);
+    Samples rest;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      const Eigen::Vector3d& p = s.points[i];
+      if (std::abs(cut.signedDistance(p)) <= thresholds.inliers(p) && detail::in_patch(grid, e.patch, p)) continue;
+      rest.points.push_back(p);
+      rest.tolerance.push_back(s.tolerance[i]);
+    }
+    if (rest.points.size() == s.points.size()) break;
+    s.points.swap(rest.points);
+    s.tolerance.swap(rest.tolerance);
   }
   rank(result);
   return result;

@@ -52,7 +52,9 @@ VerticalPlaneRansacResult find_vertical_plane(const std::vector<Eigen::Vector3d>
   const auto count = [&](const Plane& plane, std::size_t end) {
     std::size_t inliers = 0;
     for (std::size_t i = 0; i < end; ++i)
-      if (std::abs(plane.signedDistance(samples[i])) <= params.distance_threshold) ++inliers;
+      if (std::abs(plane.signedDistance(samples[i])) <=
+          (params.tolerance ? (*params.tolerance)[i] : params.distance_threshold))
+        ++inliers;
     return inliers;
   };
 

@@ -16,6 +16,7 @@ struct VerticalPlaneRansacParams {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   int max_iterations = 1000;
   double sample_radius = 0.5;  // [m]
+  const std::vector<double>* tolerance = nullptr;  // per-sample consensus distance [m], overrides distance_threshold
 };
 
 struct VerticalPlaneRansacResult {

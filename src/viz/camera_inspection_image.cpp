@@ -39,11 +39,11 @@ void draw_projected_polyline(cv::Mat& canvas, const CameraInfo& camera,
 std::string camera_counts(const CameraInspection& in) {
   char line[256];
   std::string out;
-  if (in.stereo) out += std::to_string(in.stereo->cloud.size()) + " stereo points";
-  if (in.pass_through) out += ", " + std::to_string(in.cloud.size()) + " after pass-through";
+  if (in.located) out += std::to_string(in.located->cloud.size()) + " coarse stereo points";
+  if (in.pass_through) out += std::to_string(in.cloud.size()) + " stereo points";
   if (in.plane) {
-    std::snprintf(line, sizeof(line), " | plane: %zu candidates, %zu board points",
-                  in.plane->candidates.size(), in.plane->inliers.size());
+    std::snprintf(line, sizeof(line), " | plane: %zu candidates, %zu board-sized, %zu tried, %zu board points",
+                  in.plane->candidates.size(), in.plane->ranking.size(), in.hypotheses.size(), in.board.size());
     out += line;
   }
   if (in.edges) {
@@ -78,7 +78,7 @@ Image render_camera_inspection(const Image& left, const CameraInspection& in,
     return px.x() >= 0 && px.y() >= 0 && px.x() < canvas.cols && px.y() < canvas.rows;
   };
 
-  if (in.plane) {
+  if (!in.board.points.empty()) {
     // A mask first, so that each board pixel is tinted once; a point matched at
     // a reduced scale (or with a stride) covers a block of pixels.
     int block_w = 1, block_h = 1;
@@ -87,8 +87,7 @@ Image render_camera_inspection(const Image& left, const CameraInspection& in,
       block_h = std::max(1, static_cast<int>(std::lround(1.0 / in.stereo->disparity.row_scale)));
     }
     cv::Mat mask(canvas.rows, canvas.cols, CV_8UC1, cv::Scalar(0));
-    for (const std::size_t i : in.plane->inliers) {
-      const Eigen::Vector2i& px = in.cloud.pixels[i];
+    for (const Eigen::Vector2i& px : in.board.pixels) {
       if (!inside(px)) continue;
       cv::rectangle(mask, cv::Rect(px.x() - block_w / 2, px.y() - block_h / 2, block_w, block_h),
                     cv::Scalar(255), cv::FILLED);
@@ -124,7 +123,7 @@ Image render_camera_inspection(const Image& left, const CameraInspection& in,
     const HoleCenters& centers = in.report.found ? in.report.centers : in.circles->centers;
     const Eigen::Vector3d normal = in.T_camera_board_initial
                                        ? Eigen::Vector3d(in.T_camera_board_initial->linear().col(2))
-                                       : Eigen::Vector3d(in.plane->plane.normal());
+                                       : Eigen::Vector3d(in.board_plane.normal());
     for (int h = 0; h < 4; ++h) {
       const Eigen::Vector3d& c = centers[h];
       if (!refined)
@@ -165,8 +164,12 @@ Image render_camera_inspection(const Image& left, const CameraInspection& in,
 }
 
 Image render_disparity(const CameraInspection& inspection) {
-  if (!inspection.stereo || inspection.stereo->disparity.empty()) return {};
-  const DisparityMap& map = inspection.stereo->disparity;
+  // The whole frame: the coarse pass when the board was located first.
+  const StereoMatcher::Result* stereo = inspection.located   ? &inspection.located->stereo
+                                        : inspection.stereo ? &*inspection.stereo
+                                                            : nullptr;
+  if (!stereo || stereo->disparity.empty()) return {};
+  const DisparityMap& map = stereo->disparity;
   // Colours span the 1st..99th percentile, so that a few wild matches do not flatten the scene.
   std::vector<float> finite;
   for (const float d : map.values)

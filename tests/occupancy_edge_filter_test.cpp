@@ -1,0 +1,84 @@
+// Hole rims of a dense, ring-free board cloud (a non-repetitive scan
+// accumulated over a static board), found from the board's occupancy.
+
+#include <l2s/circle_finder.hpp>
+#include <l2s/error.hpp>
+#include <l2s/occupancy_edge_filter.hpp>
+
+#include "support/ring_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace l2s {
+namespace {
+
+using test::board_pose;
+using test::kDeg;
+using test::Scene;
+
+/// `count` rays in random directions of a cone around the board, as an
+/// accumulated non-repetitive scan gives them, with range noise.
+std::vector<Eigen::Vector3d> random_scan(const Scene& scene, int count, double noise, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const Eigen::Vector3d axis = scene.T_sensor_board.translation().normalized();
+  const double az0 = std::atan2(axis.y(), axis.x()), el0 = std::asin(axis.z());
+  std::uniform_real_distribution<double> az(az0 - 20 * kDeg, az0 + 20 * kDeg), el(el0 - 15 * kDeg, el0 + 15 * kDeg);
+  std::normal_distribution<double> range_noise(0.0, noise);
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector3d d = test::ray(el(rng), az(rng));
+    const double r = scene.cast(d);
+    if (r != test::kNoHit) points.push_back(d * (r + range_noise(rng)));
+  }
+  return points;
+}
+
+std::vector<std::size_t> board_points(const std::vector<Eigen::Vector3d>& points, const Scene& scene) {
+  std::vector<std::size_t> inliers;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (std::abs(scene.visible_plane().signedDistance(points[i])) < 0.05) inliers.push_back(i);
+  return inliers;
+}
+
+TEST(OccupancyEdgeFilter, FindsTheFourRimsOfADenseBoard) {
+  Scene scene;
+  scene.T_sensor_board = board_pose({3.5, 0.3, 0.1}, 20.0 * kDeg, 5.0 * kDeg);
+  const auto points = random_scan(scene, 60000, 0.02, 1);
+  const auto board = board_points(points, scene);
+  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board, Eigen::Vector3d::UnitZ(),
+                                                   scene.target);
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.holes, 4);
+  EXPECT_GT(result.edges.size(), 4u * 40u);
+
+  const auto circles = CircleFinder().find(result.edges, scene.visible_plane(), Eigen::Vector3d::UnitZ(),
+                                           scene.target);
+  ASSERT_TRUE(circles.found) << circles.reason;
+  const HoleCenters truth = scene.true_centers();
+  for (int h = 0; h < 4; ++h) EXPECT_LT((circles.centers[h] - truth[h]).norm(), 0.006) << "hole " << h;
+}
+
+TEST(OccupancyEdgeFilter, SparseBoardSaysWhy) {
+  Scene scene;
+  const auto points = random_scan(scene, 400, 0.02, 2);
+  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
+                                                   Eigen::Vector3d::UnitZ(), scene.target);
+  EXPECT_FALSE(result.found);
+  EXPECT_FALSE(result.reason.empty());
+}
+
+TEST(OccupancyEdgeFilter, RejectsInvalidParamsNamingTheField) {
+  OccupancyEdgeFilter::Params params;
+  params.max_cell = 0.001;
+  try {
+    OccupancyEdgeFilter filter(params);
+    FAIL() << "expected ParamError";
+  } catch (const ParamError& e) {
+    EXPECT_EQ(e.field(), "max_cell");
+  }
+}
+
+}  // namespace
+}  // namespace l2s
