@@ -12,6 +12,7 @@
 #include <opencv2/core/eigen.hpp>
 
 #include <cmath>
+#include <ostream>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -27,6 +28,8 @@ struct RigCase {
   double hfov_deg, baseline;
   DistortionModel model;
 };
+
+void PrintTo(const RigCase& c, std::ostream* os) { *os << c.name; }
 
 StereoRig make_rig(const RigCase& c) {
   StereoRig nominal;
