@@ -52,6 +52,7 @@ void SimulationConfig::validate() const {
   if (threads < 0) throw ParamError("threads", "must be >= 0 (0 = all cores)");
   target.validate();
   rig.validate();
+  appearance.validate();
 }
 
 struct DatasetSimulator::Impl {
@@ -100,6 +101,7 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
 
   StereoRenderer::Params render_params;
   render_params.threads = c.threads;
+  render_params.appearance = c.appearance;
   s.renderer = std::make_unique<StereoRenderer>(c.rig, render_params);
   LidarSimulator::Params lidar_params;
   lidar_params.noise_factor = c.noise_factor;
@@ -175,7 +177,11 @@ const PlacementReport& DatasetSimulator::placement() const { return impl_->place
 const CleanStereo& DatasetSimulator::clean_images() const { return impl_->clean; }
 StereoCamera DatasetSimulator::cameras() const { return impl_->config.rig.cameras(); }
 Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const {
-  return impl_->config.setting.T_lidar_camera();
+  const SimulationConfig& c = impl_->config;
+  // The setting places the lidar relative to the physical left camera; only
+  // rectified images of a non-ideal rig live in another (rotated) frame.
+  if (c.rig.ideal() || c.rig.images() == ImageKind::Raw) return c.setting.T_lidar_camera();
+  return c.setting.T_lidar_camera() * c.rig.T_optical_camera();
 }
 std::vector<std::string> DatasetSimulator::warnings() const { return impl_->warnings; }
 
