@@ -56,14 +56,23 @@ bool window_is_valid(const StereoRig& rig, const Rectification& rect, int step) 
   const Border border = raw_border(rig.width, rig.height, step);  // same pixels, rectified image
   const Eigen::Matrix3d K_inv = rect.K.inverse();
   for (int index = 0; index < 2; ++index) {
-    const Eigen::Matrix3d back = rect.R_rect_optical[index].transpose() * K_inv;
+    const auto i = static_cast<std::size_t>(index);
+    const Eigen::Matrix3d back = rect.R_rect_optical[i].transpose() * K_inv;
+    const Eigen::Matrix3d K = rig.camera_matrix(index);
+    const LensDistortion& lens = rig.lenses[i].distortion;
+    double max_radius = 0.0;
     for (const auto* side : {&border.left, &border.right, &border.top, &border.bottom})
       for (const Eigen::Vector2d& px : *side) {
-        const Eigen::Vector2d raw = raw_pixel(rig, index, back * px.homogeneous());
-        if (!(raw.x() >= 0.0 && raw.y() >= 0.0 && raw.x() <= rig.width - 1.0 &&
-              raw.y() <= rig.height - 1.0))
-          return false;
+        const Eigen::Vector3d ray = back * px.homogeneous();
+        if (!(ray.z() > 0.0)) return false;
+        const Eigen::Vector2d n = ray.head<2>() / ray.z();
+        max_radius = std::max(max_radius, n.norm());
+        const Eigen::Vector2d d = lens.distort(n);
+        const double u = K(0, 0) * d.x() + K(0, 2), v = K(1, 1) * d.y() + K(1, 2);
+        if (!(u >= 0.0 && v >= 0.0 && u <= rig.width - 1.0 && v <= rig.height - 1.0)) return false;
       }
+    // One check for the whole window: no border ray lies beyond a fold of the lens.
+    if (!lens.one_to_one_up_to(max_radius)) return false;
   }
   return true;
 }
