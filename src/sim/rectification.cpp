@@ -77,6 +77,19 @@ bool window_is_valid(const StereoRig& rig, const Rectification& rect, int step) 
   return true;
 }
 
+bool same_lens(const CameraLens& a, const CameraLens& b) {
+  return a.focal_scale == b.focal_scale && a.aspect == b.aspect &&
+         a.principal_offset == b.principal_offset && a.distortion.model == b.distortion.model &&
+         a.distortion.coefficients == b.distortion.coefficients;
+}
+
+bool same_rig(const StereoRig& a, const StereoRig& b) {
+  return a.width == b.width && a.height == b.height && a.horizontal_fov == b.horizontal_fov &&
+         a.baseline == b.baseline && same_lens(a.lenses[0], b.lenses[0]) &&
+         same_lens(a.lenses[1], b.lenses[1]) && a.right_rotation == b.right_rotation &&
+         a.right_offset == b.right_offset;
+}
+
 }  // namespace
 
 Eigen::Vector2d undistorted_normal(const StereoRig& rig, int index, double u, double v) {
@@ -150,6 +163,21 @@ Rectification rectify(const StereoRig& rig) {
     f *= 1.001;
   }
   return rect;
+}
+
+const Rectification& rectify_cached(const StereoRig& rig) {
+  struct Entry {
+    bool valid = false;
+    StereoRig rig;
+    Rectification rectification;
+  };
+  thread_local Entry last;
+  if (!last.valid || !same_rig(last.rig, rig)) {
+    last.rectification = rectify(rig);  // may throw: the entry stays as it was
+    last.rig = rig;
+    last.valid = true;
+  }
+  return last.rectification;
 }
 
 }  // namespace l2s::sim::detail

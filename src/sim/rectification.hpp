@@ -26,6 +26,10 @@ std::array<Eigen::Matrix3d, 2> rectifying_rotations(const StereoRig& rig);
 /// when the cameras share no rectified view.
 Rectification rectify(const StereoRig& rig);
 
+/// rectify(rig), remembered per thread for the last rig asked about: for
+/// callers that project many points one by one (the placement search).
+const Rectification& rectify_cached(const StereoRig& rig);
+
 /// [px] Raw pixel of camera `index` seen along direction `ray_optical` (its
 /// physical optical frame), through K and D; NaN behind the camera or beyond
 /// where the lens is one-to-one.

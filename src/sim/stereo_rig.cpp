@@ -135,9 +135,9 @@ Eigen::Vector2d StereoRig::project_optical(int index, const Eigen::Vector3d& p) 
     return {f * p.x() / p.z() + cx(), f * p.y() / p.z() + cy()};
   }
   if (images() == ImageKind::Raw) return detail::raw_pixel(*this, index, p);
-  // Rectified images of a non-ideal rig: without distortion, so rectify()
-  // needs only the image corners and stays cheap enough to call per point.
-  const detail::Rectification rect = detail::rectify(*this);
+  // Rectified images of a non-ideal rig (without distortion, so rectify()
+  // needs only the image corners), remembered for the next point.
+  const detail::Rectification& rect = detail::rectify_cached(*this);
   const Eigen::Vector3d q = rect.R_rect_optical[static_cast<std::size_t>(index)] * p;
   if (!(q.z() > 0.0)) return {kNaN, kNaN};
   const Eigen::Vector3d px = rect.K * (q / q.z());
