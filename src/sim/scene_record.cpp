@@ -56,7 +56,7 @@ void write_scene_record(const std::string& path, const SimulationConfig& config,
       << scene.clutter.size() << YAML::EndMap;
   emit_matrix(out, "T_cambody_lidar", config.setting.T_cambody_lidar());
   emit_matrix(out, "T_cambody_board", scene.T_cambody_board);
-  emit_matrix(out, "T_lidar_camera", config.setting.T_lidar_camera());
+  emit_matrix(out, "T_lidar_camera", config.T_lidar_camera());  // the dataset's camera frame
   out << YAML::Key << "placement" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "ok" << YAML::Value << placement.ok;
   out << YAML::Key << "image_margin_px" << YAML::Value << placement.image_margin;

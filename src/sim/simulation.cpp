@@ -55,6 +55,13 @@ void SimulationConfig::validate() const {
   appearance.validate();
 }
 
+Eigen::Isometry3d SimulationConfig::T_lidar_camera() const {
+  // The setting places the lidar relative to the physical left camera; only
+  // rectified images of a non-ideal rig live in another (rotated) frame.
+  if (rig.ideal() || rig.images() == ImageKind::Raw) return setting.T_lidar_camera();
+  return setting.T_lidar_camera() * rig.T_optical_camera();
+}
+
 struct DatasetSimulator::Impl {
   SimulationConfig config;
   LidarModel model;
@@ -176,13 +183,7 @@ const LidarModel& DatasetSimulator::lidar_model() const { return impl_->model; }
 const PlacementReport& DatasetSimulator::placement() const { return impl_->placement; }
 const CleanStereo& DatasetSimulator::clean_images() const { return impl_->clean; }
 StereoCamera DatasetSimulator::cameras() const { return impl_->config.rig.cameras(); }
-Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const {
-  const SimulationConfig& c = impl_->config;
-  // The setting places the lidar relative to the physical left camera; only
-  // rectified images of a non-ideal rig live in another (rotated) frame.
-  if (c.rig.ideal() || c.rig.images() == ImageKind::Raw) return c.setting.T_lidar_camera();
-  return c.setting.T_lidar_camera() * c.rig.T_optical_camera();
-}
+Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const { return impl_->config.T_lidar_camera(); }
 std::vector<std::string> DatasetSimulator::warnings() const { return impl_->warnings; }
 
 std::vector<std::string> simulate_dataset(const SimulationConfig& config, const std::string& out_dir,

@@ -41,6 +41,12 @@ struct SimulationConfig {
   StereoRig rig;                 ///< image size, fov, baseline; lenses, mount, raw or rectified images
   Appearance appearance;         ///< materials, light and shadows, camera response, gray or colour
 
+  /// The ground truth of this config in the dataset's camera frame
+  /// (DATASET.md): the setting's for raw images (the physical left camera)
+  /// and the ideal rig; for rectified images of a non-ideal rig, relative to
+  /// the rectified left frame.
+  Eigen::Isometry3d T_lidar_camera() const;
+
   /// Table I setting `index` (1..9) with the given lidar model; throws ParamError.
   static SimulationConfig paper(int index, const std::string& lidar = "vlp16");
 
@@ -86,9 +92,7 @@ class DatasetSimulator {
   const PlacementReport& placement() const;   ///< for the configured lidar
   const CleanStereo& clean_images() const;
   StereoCamera cameras() const;               ///< rig.cameras(): ROS camera_info and the image kind
-  /// Ground truth; the camera frame is the dataset's (DATASET.md): the
-  /// physical left camera for raw images, the rectified one otherwise.
-  Eigen::Isometry3d T_lidar_camera() const;
+  Eigen::Isometry3d T_lidar_camera() const;   ///< ground truth, config().T_lidar_camera()
   std::vector<std::string> warnings() const;  ///< placement failures when not strict
 
  private:
