@@ -208,6 +208,21 @@ TEST_P(StereoRigCase, RectifiedImagesHaveNoInvalidBorder) {
     EXPECT_LE(hi_y, rig.height - 1 + 1e-3) << info->camera_name;
     // ...and the window is not needlessly small: it reaches the raw border somewhere.
     EXPECT_LT(std::min({lo_x, lo_y, rig.width - 1 - hi_x, rig.height - 1 - hi_y}), 2.0) << info->camera_name;
+
+    // The maps are OpenCV's rectified -> raw pixel model; ours must agree.
+    const int index = info == &cams.left ? 0 : 1;
+    const Eigen::Matrix3d back =
+        info->rectification_matrix.transpose() * info->projection_matrix.leftCols<3>().inverse();
+    double worst = 0.0;
+    for (int v = 0; v < rig.height; v += 37)
+      for (int u = 0; u < rig.width; u += 41) {
+        const Eigen::Vector3d ray = back * Eigen::Vector3d(u, v, 1.0);
+        const Eigen::Vector2d d =
+            rig.lenses[static_cast<std::size_t>(index)].distortion.distort(ray.head<2>() / ray.z());
+        const Eigen::Vector2d ours = (rig.camera_matrix(index) * d.homogeneous()).head<2>();
+        worst = std::max(worst, (ours - Eigen::Vector2d(map_x.at<float>(v, u), map_y.at<float>(v, u))).norm());
+      }
+    EXPECT_LT(worst, 0.01) << info->camera_name;  // the maps are single precision
   }
 }
 
