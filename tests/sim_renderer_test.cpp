@@ -182,6 +182,29 @@ TEST(StereoRenderer, NoiseHasThePapersSigmaAndIgnoresThreads) {
   EXPECT_NEAR(std::sqrt(sum2 / n), expected, 0.05 * expected);
 }
 
+/// FNV-1a over raw bytes: a checksum that is the same on every run.
+std::uint64_t fnv1a(const void* data, std::size_t size) {
+  std::uint64_t h = 1469598103934665603ULL;
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ULL;
+  return h;
+}
+
+TEST(StereoRenderer, DefaultsRenderTheSameBytesAsBeforeAnyRigOrLook) {
+  // Checksums taken at 7cbd45a, before rigs, raw images and looks existed:
+  // the paper rig with the default appearance must not change by one bit.
+  const Scene scene = make_scene(Target{}, BoardPose{3.0, 0.1, -0.1, 0.3, 0.05, 0.05});
+  const StereoRenderer renderer{StereoRig{}};
+  const CleanStereo clean = renderer.render(RayCaster(scene));
+  EXPECT_EQ(fnv1a(clean.left.intensity.data(), clean.left.intensity.size() * sizeof(float)),
+            0x4f7293df59bf3f1aULL);
+  EXPECT_EQ(fnv1a(clean.right.intensity.data(), clean.right.intensity.size() * sizeof(float)),
+            0xaa79efd1da6c7ac4ULL);
+  const StereoImages images = renderer.add_noise(clean, 1.0, 7, 3);
+  EXPECT_EQ(fnv1a(images.left.pixels.data(), images.left.pixels.size()), 0x4c0c5ab8a06fb4d4ULL);
+  EXPECT_EQ(fnv1a(images.right.pixels.data(), images.right.pixels.size()), 0x4769cfdd5370e1d1ULL);
+}
+
 TEST(StereoRenderer, RenderingDoesNotDependOnThreads) {
   const Scene scene = make_scene(Target{}, BoardPose{3.0, 0.1, 0.0, 0.3, 0.0, 0.05});
   StereoRig rig;

@@ -54,12 +54,13 @@ void check_camera(const RayCaster& caster, const StereoRig& rig, int index,
   double margin = 1e9;
   for (const Eigen::Vector3d& p_board : outline_points(scene.target)) {
     const Eigen::Vector3d p = T_optical_board * p_board;
-    if (!(p.z() > 0.1)) {
+    // Through the model of the image that is written (lens distortion for raw images).
+    const Eigen::Vector2d px = rig.project_optical(index, p);
+    if (!(p.z() > 0.1) || !px.allFinite()) {
       margin = -1e9;
       break;
     }
-    const double u = rig.fx() * p.x() / p.z() + rig.cx();
-    const double v = rig.fx() * p.y() / p.z() + rig.cy();
+    const double u = px.x(), v = px.y();
     margin = std::min({margin, u + 0.5, rig.width - 0.5 - u, v + 0.5, rig.height - 0.5 - v});
   }
   out->margin = std::min(out->margin, margin);

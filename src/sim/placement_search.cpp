@@ -47,9 +47,9 @@ Margins estimate(const Target& target, const BoardPose& pose, const SensorSettin
       for (double sy : {-0.5, 0.5})
         for (double z : {0.0, -target.board_thickness}) {
           const Eigen::Vector3d p = T * Eigen::Vector3d(sx * target.board_width, sy * target.board_height, z);
-          if (p.z() < 0.1) return Margins{0, 0, -1e9, 10.0};
-          const double u = rig.fx() * p.x() / p.z() + rig.cx();
-          const double v = rig.fx() * p.y() / p.z() + rig.cy();
+          const Eigen::Vector2d px = rig.project_optical(camera, p);
+          if (p.z() < 0.1 || !px.allFinite()) return Margins{0, 0, -1e9, 10.0};
+          const double u = px.x(), v = px.y();
           m.image = std::min({m.image, u + 0.5, rig.width - 0.5 - u, v + 0.5, rig.height - 0.5 - v});
         }
   }

@@ -1,6 +1,7 @@
 #include "sim/scene_record.hpp"
 
 #include "detail/atomic_file.hpp"
+#include "sim/scene_yaml_camera.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -42,11 +43,11 @@ void write_scene_record(const std::string& path, const SimulationConfig& config,
       << "z" << YAML::Value << pose.z << YAML::Key << "yaw" << YAML::Value << pose.yaw << YAML::Key
       << "pitch" << YAML::Value << pose.pitch << YAML::Key << "roll" << YAML::Value << pose.roll
       << YAML::EndMap;
-  out << YAML::Key << "camera" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
-      << "width" << YAML::Value << config.rig.width << YAML::Key << "height" << YAML::Value
-      << config.rig.height << YAML::Key << "horizontal_fov" << YAML::Value
-      << config.rig.horizontal_fov << YAML::Key << "baseline" << YAML::Value << config.rig.baseline
-      << YAML::EndMap;
+  // --- Camera side (scene_yaml_camera.hpp): rig, image kind, look ---
+  emit_camera_block(out, config.rig);
+  out << YAML::Key << "images" << YAML::Value
+      << (config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
+  emit_appearance_block(out, config.appearance);
   out << YAML::Key << "scene" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
       << "camera_height" << YAML::Value << config.layout.camera_height << YAML::Key << "wall_gap"
       << YAML::Value << config.layout.wall_gap << YAML::Key << "wall_half_width" << YAML::Value
@@ -55,7 +56,7 @@ void write_scene_record(const std::string& path, const SimulationConfig& config,
       << scene.clutter.size() << YAML::EndMap;
   emit_matrix(out, "T_cambody_lidar", config.setting.T_cambody_lidar());
   emit_matrix(out, "T_cambody_board", scene.T_cambody_board);
-  emit_matrix(out, "T_lidar_camera", config.setting.T_lidar_camera());
+  emit_matrix(out, "T_lidar_camera", config.T_lidar_camera());  // the dataset's camera frame
   out << YAML::Key << "placement" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "ok" << YAML::Value << placement.ok;
   out << YAML::Key << "image_margin_px" << YAML::Value << placement.image_margin;

@@ -6,6 +6,8 @@
 #include <l2s/error.hpp>
 #include <l2s/sim/settings.hpp>
 
+#include "sim/scene_yaml_camera.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
@@ -72,7 +74,7 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
   if (!root || root.IsNull()) return config;
   const Reader r(origin);
   r.only_keys(root, "", {"setting", "sensor_pose", "lidar", "frames", "noise_factor", "seed", "target",
-                         "board_pose", "camera", "scene", "strict_placement", "threads"});
+                         "board_pose", "camera", "appearance", "scene", "strict_placement", "threads"});
 
   if (root["setting"] && root["sensor_pose"]) r.fail("sensor_pose", "give either setting or sensor_pose");
   if (root["setting"]) {
@@ -129,13 +131,9 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
     r.read(pose, "roll", "board_pose", &board.roll);
     config.board_pose = board;
   }
-  if (const YAML::Node camera = root["camera"]) {
-    r.only_keys(camera, "camera", {"width", "height", "horizontal_fov", "baseline"});
-    r.read(camera, "width", "camera", &config.rig.width);
-    r.read(camera, "height", "camera", &config.rig.height);
-    r.read(camera, "horizontal_fov", "camera", &config.rig.horizontal_fov);
-    r.read(camera, "baseline", "camera", &config.rig.baseline);
-  }
+  // --- Camera side (scene_yaml_camera.hpp): the rig and the scene's look ---
+  if (const YAML::Node camera = root["camera"]) detail::read_camera_block(camera, origin, &config.rig);
+  if (const YAML::Node look = root["appearance"]) detail::read_appearance_block(look, origin, &config.appearance);
   if (const YAML::Node scene = root["scene"]) {
     r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top",
                                  "default_clutter", "clutter"});

@@ -52,6 +52,14 @@ void SimulationConfig::validate() const {
   if (threads < 0) throw ParamError("threads", "must be >= 0 (0 = all cores)");
   target.validate();
   rig.validate();
+  appearance.validate();
+}
+
+Eigen::Isometry3d SimulationConfig::T_lidar_camera() const {
+  // The setting places the lidar relative to the physical left camera; only
+  // rectified images of a non-ideal rig live in another (rotated) frame.
+  if (rig.ideal() || rig.images() == ImageKind::Raw) return setting.T_lidar_camera();
+  return setting.T_lidar_camera() * rig.T_optical_camera();
 }
 
 struct DatasetSimulator::Impl {
@@ -100,6 +108,7 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
 
   StereoRenderer::Params render_params;
   render_params.threads = c.threads;
+  render_params.appearance = c.appearance;
   s.renderer = std::make_unique<StereoRenderer>(c.rig, render_params);
   LidarSimulator::Params lidar_params;
   lidar_params.noise_factor = c.noise_factor;
@@ -174,9 +183,7 @@ const LidarModel& DatasetSimulator::lidar_model() const { return impl_->model; }
 const PlacementReport& DatasetSimulator::placement() const { return impl_->placement; }
 const CleanStereo& DatasetSimulator::clean_images() const { return impl_->clean; }
 StereoCamera DatasetSimulator::cameras() const { return impl_->config.rig.cameras(); }
-Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const {
-  return impl_->config.setting.T_lidar_camera();
-}
+Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const { return impl_->config.T_lidar_camera(); }
 std::vector<std::string> DatasetSimulator::warnings() const { return impl_->warnings; }
 
 std::vector<std::string> simulate_dataset(const SimulationConfig& config, const std::string& out_dir,

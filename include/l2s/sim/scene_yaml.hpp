@@ -13,6 +13,10 @@
 //   #          hole_radius: 0.12, hole_spacing_x: 0.3, hole_spacing_y: 0.3}
 //   board_pose: {x: 3.0, y: 0.1, z: 0.0, yaw: 0.3, pitch: 0.05, roll: 0.05}
 //   camera: {width: 1280, height: 960, horizontal_fov: 0.7505, baseline: 0.12}
+//   # camera: also distortion, raw_images, lenses and mount of a real pair;
+//   # appearance: board texture, background, light and shadows, camera
+//   # response. Every key: src/sim/scene_yaml_camera.hpp.
+//   appearance: {board_texture: wood, background: bricks, shadows: true}
 //   scene:
 //     camera_height: 1.5
 //     wall_gap: 3.0

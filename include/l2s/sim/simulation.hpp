@@ -2,6 +2,7 @@
 // The simulator's facade: from one flat SimulationConfig to a dataset folder
 // laid out as DATASET.md says (the paper's Gazebo test suite, Sec. IV-A).
 
+#include <l2s/sim/appearance.hpp>
 #include <l2s/sim/lidar_model.hpp>
 #include <l2s/sim/placement.hpp>
 #include <l2s/sim/scene.hpp>
@@ -32,10 +33,19 @@ struct SimulationConfig {
   std::uint64_t seed = 1;        ///< S
   Target target;                 ///< the board (Target::preset or target.yaml)
   std::optional<BoardPose> board_pose;  ///< auto-placed (find_placement) when empty
-  StereoRig rig;                 ///< image size, fov, baseline
   SceneLayout layout;            ///< wall, ground, clutter
   bool strict_placement = true;  ///< throw when the placement check fails, else warn
   int threads = 0;               ///< 0 = hardware concurrency
+
+  // --- Camera side: the stereo rig and how the scene looks to it ---
+  StereoRig rig;                 ///< image size, fov, baseline; lenses, mount, raw or rectified images
+  Appearance appearance;         ///< materials, light and shadows, camera response, gray or colour
+
+  /// The ground truth of this config in the dataset's camera frame
+  /// (DATASET.md): the setting's for raw images (the physical left camera)
+  /// and the ideal rig; for rectified images of a non-ideal rig, relative to
+  /// the rectified left frame.
+  Eigen::Isometry3d T_lidar_camera() const;
 
   /// Table I setting `index` (1..9) with the given lidar model; throws ParamError.
   static SimulationConfig paper(int index, const std::string& lidar = "vlp16");
@@ -47,7 +57,7 @@ struct SimulationConfig {
 /// One frame in memory, as the dataset folder will hold it.
 struct SimulatedFrame {
   LidarCloud lidar;  ///< lidar frame, with ring and intensity
-  Image left;        ///< 8-bit gray
+  Image left;        ///< 8-bit gray (BGR for a colour appearance); raw images when rig.images() is Raw
   Image right;
 };
 
@@ -81,8 +91,8 @@ class DatasetSimulator {
   const LidarModel& lidar_model() const;
   const PlacementReport& placement() const;   ///< for the configured lidar
   const CleanStereo& clean_images() const;
-  StereoCamera cameras() const;
-  Eigen::Isometry3d T_lidar_camera() const;   ///< ground truth
+  StereoCamera cameras() const;               ///< rig.cameras(): ROS camera_info and the image kind
+  Eigen::Isometry3d T_lidar_camera() const;   ///< ground truth, config().T_lidar_camera()
   std::vector<std::string> warnings() const;  ///< placement failures when not strict
 
  private:

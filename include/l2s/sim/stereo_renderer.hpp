@@ -1,10 +1,14 @@
 #pragma once
-// Renders the rectified stereo pair of a static scene by ray casting: several
-// samples per pixel where a pixel straddles two surfaces (anti-aliased hole
-// rims and board borders), procedural textures that stereo matching can lock
-// onto, Lambert shading, then per-frame Gaussian intensity noise
-// N(0, (K * 0.007)^2) on a 0..1 scale (paper, Sec. IV-B) and 8-bit output.
+// Renders the stereo pair of a static scene by ray casting, as the rig writes
+// it (rectified, or raw through the physical lenses): several samples per
+// pixel where a pixel straddles two surfaces or a shadow edge (anti-aliased
+// hole rims, board borders, shadows), procedural textures that stereo
+// matching can lock onto, Lambert shading under the appearance's light, the
+// camera's response (exposure, vignetting, blur, gamma), then per-frame
+// Gaussian intensity noise N(0, (K * 0.007)^2) on a 0..1 scale (paper,
+// Sec. IV-B) and 8-bit gray or BGR output.
 
+#include <l2s/sim/appearance.hpp>
 #include <l2s/sim/ray_caster.hpp>
 #include <l2s/sim/stereo_rig.hpp>
 #include <l2s/types.hpp>
@@ -18,10 +22,13 @@ namespace l2s::sim {
 struct CleanImage {
   int width = 0;                    ///< [px]
   int height = 0;                   ///< [px]
-  std::vector<float> intensity;     ///< row-major, 0..1
+  int channels = 1;                 ///< 1 (gray) or 3 (B, G, R interleaved)
+  std::vector<float> intensity;     ///< row-major, 0..1 (values above 1 clip at white)
   std::vector<SurfaceId> surface;   ///< row-major, surface hit by the pixel-centre ray
 
-  float at(int u, int v) const { return intensity[static_cast<std::size_t>(v) * width + u]; }
+  float at(int u, int v, int c = 0) const {
+    return intensity[(static_cast<std::size_t>(v) * width + u) * channels + c];
+  }
   SurfaceId surface_at(int u, int v) const { return surface[static_cast<std::size_t>(v) * width + u]; }
 };
 
@@ -30,7 +37,7 @@ struct CleanStereo {
   CleanImage right;
 };
 
-/// The 8-bit gray images of one frame.
+/// The 8-bit images of one frame (gray, or BGR for a colour appearance).
 struct StereoImages {
   Image left;
   Image right;
@@ -43,6 +50,7 @@ class StereoRenderer {
     double intensity_sigma0 = 0.007;  ///< 0..1 scale, noise at factor K = 1 (paper)
     std::uint64_t texture_seed = 0x1234abcdULL;  ///< selects the procedural textures
     int threads = 0;              ///< worker threads, 0 = hardware concurrency
+    Appearance appearance;        ///< materials, light, camera response (defaults: the paper suite's look)
   };
 
   // Two constructors: see LidarSimulator (nested Params as default argument).

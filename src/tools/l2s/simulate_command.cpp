@@ -33,7 +33,51 @@ struct SimulateOptions {
   int threads = 0;
   bool lenient = false;
   bool overwrite = false;
+
+  // --- Camera side: the rig and the scene's look (override a scene file) ---
+  int width = 1280;
+  int height = 960;
+  double hfov_deg = 43.0;
+  double baseline = 0.12;
+  std::string distortion = "none";
+  std::string board_texture = "matte";
+  std::string background = "textured";
+  bool shadows = false;
 };
+
+/// Applies the rig and look options that were given on the command line.
+void apply_camera_options(const SimulateOptions& options, const CLI::App& command,
+                          sim::SimulationConfig* config) {
+  const auto given = [&](const char* name) { return command.count(name) > 0; };
+  sim::StereoRig& rig = config->rig;
+  if (given("--width")) rig.width = options.width;
+  if (given("--height")) rig.height = options.height;
+  if (given("--hfov")) rig.horizontal_fov = options.hfov_deg * 3.141592653589793 / 180.0;
+  if (given("--baseline")) rig.baseline = options.baseline;
+  // After size and field of view: the typical lenses depend on both.
+  if (given("--distortion"))
+    rig = rig.with_real_lenses(sim::distortion_model_from_name(options.distortion, "--distortion"));
+  sim::Appearance& look = config->appearance;
+  if (given("--board-texture")) look.board = sim::board_texture_from_name(options.board_texture, "--board-texture");
+  if (given("--background")) look.background = sim::background_from_name(options.background, "--background");
+  if (options.shadows) look.shadows = true;
+}
+
+void add_camera_options(CLI::App* command, SimulateOptions* options) {
+  command->add_option("--width", options->width, "image width [px]")->check(CLI::Range(16, 16384));
+  command->add_option("--height", options->height, "image height [px]")->check(CLI::Range(16, 16384));
+  command->add_option("--hfov", options->hfov_deg, "horizontal field of view [deg]")
+      ->check(CLI::Range(3.0, 170.0));
+  command->add_option("--baseline", options->baseline, "stereo baseline [m]")->check(CLI::Range(0.01, 5.0));
+  command->add_option("--distortion", options->distortion,
+                      "lenses of a real pair with this distortion, raw images (none: rectified)")
+      ->check(CLI::IsMember({"none", "plumb_bob", "equidistant"}));
+  command->add_option("--board-texture", options->board_texture, "board look")
+      ->check(CLI::IsMember({"matte", "wood", "low-contrast"}));
+  command->add_option("--background", options->background, "wall look")
+      ->check(CLI::IsMember({"textured", "bricks", "tiles", "plain"}));
+  command->add_flag("--shadows", options->shadows, "hard shadows from the sun");
+}
 
 // A folder that already holds frames is only replaced on request, and then
 // wholly: leftover frames of a longer earlier run would corrupt the dataset.
@@ -43,7 +87,8 @@ void prepare_output(const std::string& folder, bool overwrite) {
   if (fs::is_empty(folder)) return;
   if (!overwrite) throw FileError(folder, "folder is not empty (use --overwrite to replace the dataset)");
   for (const char* sub : {"lidar", "left", "right"}) fs::remove_all(fs::path(folder) / sub);
-  for (const char* file : {"left.yaml", "right.yaml", "target.yaml", "ground_truth.yaml", "scene.yaml"})
+  for (const char* file :
+       {"dataset.yaml", "left.yaml", "right.yaml", "target.yaml", "ground_truth.yaml", "scene.yaml"})
     fs::remove(fs::path(folder) / file);
 }
 
@@ -64,6 +109,7 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   if (!options.target_file.empty()) config.target = io::read_target(options.target_file);
   if (given("--threads")) config.threads = options.threads;
   if (options.lenient) config.strict_placement = false;
+  apply_camera_options(options, command, &config);
 
   prepare_output(options.out_dir, options.overwrite);
   const sim::DatasetSimulator simulator(config);
@@ -78,6 +124,8 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
               config.frames, config.lidar.c_str(), config.setting_index, config.noise_factor,
               static_cast<unsigned long long>(config.seed));
   std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
+  std::printf("cameras %dx%d, %s images\n", config.rig.width, config.rig.height,
+              config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
   return 0;
 }
 
@@ -104,6 +152,7 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)");
   command->add_flag("--lenient", options->lenient, "warn instead of failing when the placement check fails");
   command->add_flag("--overwrite", options->overwrite, "replace an existing dataset in out_dir");
+  add_camera_options(command, options.get());
   command->callback([&runner, options, command] {
     runner = [options, command] { return run_simulate(*options, *command); };
   });

@@ -1,0 +1,81 @@
+#include <l2s/sim/appearance.hpp>
+
+#include <l2s/error.hpp>
+
+#include <cmath>
+
+namespace l2s::sim {
+namespace {
+
+void check_range(double value, double lo, double hi, const char* field, const char* unit = "") {
+  if (!(value >= lo && value <= hi))
+    throw ParamError(std::string("appearance.") + field,
+                     "must be " + std::to_string(lo) + ".." + std::to_string(hi) + unit);
+}
+
+}  // namespace
+
+const char* name_of(BoardTexture texture) {
+  switch (texture) {
+    case BoardTexture::WoodGrain: return "wood";
+    case BoardTexture::LowContrast: return "low-contrast";
+    case BoardTexture::Matte: break;
+  }
+  return "matte";
+}
+
+const char* name_of(Background background) {
+  switch (background) {
+    case Background::Bricks: return "bricks";
+    case Background::Tiles: return "tiles";
+    case Background::Plain: return "plain";
+    case Background::Textured: break;
+  }
+  return "textured";
+}
+
+const char* name_of(Sky sky) { return sky == Sky::Daylight ? "daylight" : "uniform"; }
+
+BoardTexture board_texture_from_name(const std::string& name, const std::string& field) {
+  for (BoardTexture t : {BoardTexture::Matte, BoardTexture::WoodGrain, BoardTexture::LowContrast})
+    if (name == name_of(t)) return t;
+  throw ParamError(field, "unknown board texture '" + name + "' (matte, wood, low-contrast)");
+}
+
+Background background_from_name(const std::string& name, const std::string& field) {
+  for (Background b : {Background::Textured, Background::Bricks, Background::Tiles, Background::Plain})
+    if (name == name_of(b)) return b;
+  throw ParamError(field, "unknown background '" + name + "' (textured, bricks, tiles, plain)");
+}
+
+Sky sky_from_name(const std::string& name, const std::string& field) {
+  for (Sky s : {Sky::Uniform, Sky::Daylight})
+    if (name == name_of(s)) return s;
+  throw ParamError(field, "unknown sky '" + name + "' (uniform, daylight)");
+}
+
+bool Appearance::is_default() const {
+  const Appearance d;
+  return board == d.board && background == d.background && sky == d.sky &&
+         brick_length == d.brick_length && brick_height == d.brick_height &&
+         joint_width == d.joint_width && to_light == d.to_light && ambient == d.ambient &&
+         shadows == d.shadows && exposure == d.exposure && vignetting == d.vignetting &&
+         blur_sigma == d.blur_sigma && gamma == d.gamma && colour == d.colour;
+}
+
+void Appearance::validate() const {
+  check_range(brick_length, 0.05, 1.0, "brick_length", " m");
+  check_range(brick_height, 0.03, 0.5, "brick_height", " m");
+  check_range(joint_width, 0.001, 0.05, "joint_width", " m");
+  if (!(joint_width < 0.5 * brick_height && joint_width < 0.5 * brick_length))
+    throw ParamError("appearance.joint_width", "must be less than half a brick");
+  if (!(to_light.allFinite() && std::abs(to_light.norm() - 1.0) < 1e-6))
+    throw ParamError("appearance.to_light", "must be a unit vector");
+  check_range(ambient, 0.0, 1.0, "ambient");
+  check_range(exposure, 0.1, 10.0, "exposure");
+  check_range(vignetting, 0.0, 0.8, "vignetting");
+  check_range(blur_sigma, 0.0, 3.0, "blur_sigma", " px");
+  check_range(gamma, 1.0, 3.0, "gamma");
+}
+
+}  // namespace l2s::sim

@@ -1,0 +1,58 @@
+#include "sim/shading.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace l2s::sim::detail {
+namespace {
+
+/// Identifies the face seen by a ray; pixels with different keys straddle an edge.
+int surface_key(const Hit& hit, bool shadowed) {
+  return (static_cast<int>(hit.surface) * 16 + hit.part) * 2 + (shadowed ? 1 : 0);
+}
+
+/// [m] Shadow rays start this far off the surface so they do not hit it again.
+constexpr double kShadowOffset = 1e-5;
+
+}  // namespace
+
+Shader::Shader(const RayCaster& caster, const Appearance& appearance, std::uint64_t texture_seed,
+               int channels, double pixel_angle)
+    : caster_(caster),
+      look_(appearance),
+      materials_(appearance, texture_seed),
+      channels_(channels),
+      pixel_angle_(pixel_angle) {}
+
+bool Shader::in_shadow(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) const {
+  return caster_.cast(point + kShadowOffset * normal, look_.to_light).hit();
+}
+
+Sample Shader::shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const {
+  const Hit hit = caster_.cast(origin, direction);
+  Sample sample;
+  sample.surface = hit.surface;
+  Albedo albedo;
+  double light = 1.0;  // the sky glows by itself
+  if (!hit.hit()) {
+    albedo = materials_.sky(direction);
+  } else {
+    Eigen::Vector3d n = hit.normal;
+    if (n.dot(direction) > 0.0) n = -n;  // the side facing the viewer
+    const double facing = std::max(0.1, -n.dot(direction));
+    albedo = materials_.surface(hit, hit.t * pixel_angle_ / facing);
+    const double lambert = std::max(0.0, n.dot(look_.to_light));
+    const bool shadowed =
+        look_.shadows && lambert > 0.0 && in_shadow(origin + hit.t * direction, n);
+    light = look_.ambient + (1.0 - look_.ambient) * (shadowed ? 0.0 : lambert);
+    sample.key = surface_key(hit, shadowed);
+  }
+  if (channels_ == 1) {
+    sample.value[0] = albedo.gray * light;
+  } else {
+    for (int c = 0; c < 3; ++c) sample.value[static_cast<std::size_t>(c)] = albedo.gray * albedo.tint[c] * light;
+  }
+  return sample;
+}
+
+}  // namespace l2s::sim::detail
