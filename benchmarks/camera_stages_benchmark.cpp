@@ -59,7 +59,7 @@ void BM_EdgeFilter_Filter(benchmark::State& state) {
   const Frame& f = frame();
   const l2s::EdgeFilter filter;
   for (auto _ : state) {
-    const auto result = filter.filter(f.pair.left, f.board, f.plane, f.scene.target);
+    const auto result = filter.filter(f.pair.left, f.scene.camera.left, f.board, f.plane, f.scene.target);
     benchmark::DoNotOptimize(result.edges.points.data());
   }
   state.counters["points_in"] = static_cast<double>(f.board.size());

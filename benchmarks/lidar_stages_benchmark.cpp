@@ -93,7 +93,7 @@ BENCHMARK(BM_PlaneSegmenter_SegmentStereo)->Unit(benchmark::kMillisecond);
 void BM_DiscontinuityFilter_Filter(benchmark::State& state) {
   const Frame& f = frame(static_cast<int>(state.range(0)));
   const DiscontinuityFilter filter;
-  for (auto _ : state) benchmark::DoNotOptimize(filter.filter(f.kept, f.plane.plane, f.plane.inliers));
+  for (auto _ : state) benchmark::DoNotOptimize(filter.filter(f.kept, f.plane.plane, f.plane.inliers, Target{}));
   state.counters["edges"] = static_cast<double>(f.edges.edges.size());
 }
 BENCHMARK(BM_DiscontinuityFilter_Filter)->Arg(16)->Arg(64)->Unit(benchmark::kMicrosecond);

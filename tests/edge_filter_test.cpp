@@ -55,8 +55,8 @@ TEST(EdgeFilter, KeepsRimPointsAndDropsBorderLines) {
 
   EdgeFilter::Params no_lines;
   no_lines.remove_border_lines = false;
-  const EdgeFilter::Result edges = EdgeFilter(no_lines).filter(pair.left, board, plane, scene.target);
-  const EdgeFilter::Result filtered = EdgeFilter().filter(pair.left, board, plane, scene.target);
+  const EdgeFilter::Result edges = EdgeFilter(no_lines).filter(pair.left, scene.camera.left, board, plane, scene.target);
+  const EdgeFilter::Result filtered = EdgeFilter().filter(pair.left, scene.camera.left, board, plane, scene.target);
   ASSERT_TRUE(filtered.found) << filtered.reason;
   const Classified before = classify(edges.edges, scene.T_camera_board, scene.target);
   const Classified after = classify(filtered.edges, scene.T_camera_board, scene.target);
@@ -83,7 +83,8 @@ TEST(EdgeFilter, TextureOnlyCloudHasNoEdges) {
       cloud.pixels.emplace_back(x, y);
     }
   const EdgeFilter::Result result =
-      EdgeFilter().filter(flat, cloud, Plane(Eigen::Vector3d::UnitZ(), -3.0), Target{});
+      EdgeFilter().filter(flat, CameraInfo::ideal("left", 64, 48, 100.0, 31.5, 23.5), cloud,
+                          Plane(Eigen::Vector3d::UnitZ(), -3.0), Target{});
   EXPECT_FALSE(result.found);
   EXPECT_EQ(result.edge_points, 0u);
   EXPECT_FALSE(result.reason.empty());

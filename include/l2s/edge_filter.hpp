@@ -3,6 +3,7 @@
 // on intensity edges, then drop the board's outer border lines
 // (paper Sec. III-B, Sobel threshold tau_sobel; Sec. III-C, line removal).
 
+#include <l2s/camera.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -22,7 +23,11 @@ class EdgeFilter {
   };
 
   struct Params {
-    double sobel_threshold = 128.0;  ///< tau_sobel: keep points whose magnitude >= this, 0..255
+    double sobel_threshold = 128.0;  ///< tau_sobel: keep pixels whose magnitude >= this, 0..255
+    double adaptive_quantile = 0.98;  ///< the board region's strong edges: this quantile of its magnitudes (rims and outline are a few % of it); 0 = fixed tau_sobel, 0..1
+    double adaptive_fraction = 0.5;   ///< on a low-contrast board the threshold drops to this fraction of those strong edges, (0, 1]
+    double min_sobel_threshold = 16.0;  ///< ... but never below this, 0..255
+    int region_dilation_px = 3;      ///< [px] the board region is its points' pixels widened by this (stereo leaves the rims themselves unmatched), 0..50
     Magnitude magnitude = Magnitude::Hypot;  ///< scaling of the Sobel magnitude (see enum)
     bool remove_border_lines = true;  ///< drop the outer border of the board (Sec. III-C)
     double line_distance = 0.02;     ///< [m] RANSAC inlier distance to a border line (SGM scatters borders by ~1 cm), > 0
@@ -41,9 +46,10 @@ class EdgeFilter {
   struct Result {
     bool found = false;        ///< some edge points survived
     std::string reason;        ///< why not, when !found
-    StereoCloud edges;         ///< [m] camera frame: edge points minus border lines, with pixels
+    StereoCloud edges;         ///< [m] camera frame: edge points (on the plane) minus border lines, with pixels
     std::size_t input_points = 0;   ///< board-plane points given
-    std::size_t edge_points = 0;    ///< of those, on an image edge
+    std::size_t edge_points = 0;    ///< image edge pixels in the board's region, cast onto the plane
+    double sobel_threshold = 0.0;   ///< the threshold used (tau_sobel or the adaptive one)
     std::size_t border_points = 0;  ///< of those, removed as board border
     int border_lines = 0;           ///< border lines found and removed
   };
@@ -55,11 +61,12 @@ class EdgeFilter {
   explicit EdgeFilter(Params params);
   const Params& params() const { return params_; }
 
-  /// `left`: the left image (gray or BGR) the cloud's pixels refer to;
-  /// `board_cloud`: stereo points of the board plane; `plane_camera`: that
-  /// plane; `target`: the board, for the border lengths.
-  Result filter(const Image& left, const StereoCloud& board_cloud, const Plane& plane_camera,
-                const Target& target) const;
+  /// `left`: the rectified left image (gray or BGR) the cloud's pixels refer
+  /// to; `camera`: its camera (edge pixels are cast onto the plane through
+  /// it); `board_cloud`: stereo points of the board plane; `plane_camera`:
+  /// that plane; `target`: the board, for the border lengths.
+  Result filter(const Image& left, const CameraInfo& camera, const StereoCloud& board_cloud,
+                const Plane& plane_camera, const Target& target) const;
 
  private:
   Params params_;

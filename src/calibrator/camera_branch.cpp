@@ -123,7 +123,8 @@ class CameraHypothesisTester {
   }
 
   bool find_holes(CameraAttempt& attempt, BoardHypothesis& hypothesis) {
-    attempt.edges = EdgeFilter(f_.params.edges).filter(f_.left, attempt.board, attempt.plane, f_.target);
+    attempt.edges =
+        EdgeFilter(f_.params.edges).filter(f_.left, f_.cameras.left, attempt.board, attempt.plane, f_.target);
     if (!attempt.edges.found) return stop(hypothesis, "edges", attempt.edges.reason);
     attempt.circles = CircleFinder(f_.params.camera_circles)
                           .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target);

@@ -107,6 +107,10 @@ template <class V>
 void visit(V& v, EdgeFilter::Params& p) {
   using M = EdgeFilter::Magnitude;
   v.field("sobel_threshold", p.sobel_threshold);
+  v.field("adaptive_quantile", p.adaptive_quantile);
+  v.field("adaptive_fraction", p.adaptive_fraction);
+  v.field("min_sobel_threshold", p.min_sobel_threshold);
+  v.field("region_dilation_px", p.region_dilation_px);
   v.choice("magnitude", p.magnitude, {{M::Hypot, "hypot"}, {M::HalfL1, "half_l1"}});
   v.field("remove_border_lines", p.remove_border_lines);
   v.field("line_distance", p.line_distance);

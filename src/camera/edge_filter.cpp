@@ -1,7 +1,11 @@
-// Edge filter of the stereo cloud (paper Sec. III-B and III-C).
-// 1. Sobel: keep board-plane points whose left pixel has magnitude >= tau_sobel.
-//    The magnitude is evaluated only at the points' pixels (3x3 cv::Sobel
-//    kernel on the 8-bit gray image), scaled as EdgeFilter::Magnitude says.
+// Edge filter of the stereo board (paper Sec. III-B and III-C).
+// 1. Sobel: the paper keeps board-plane stereo points whose left pixel has
+//    magnitude >= tau_sobel. Stereo is weakest exactly at the rims (matching
+//    windows straddle them), so here the left image's own edge pixels inside
+//    the board's region (its points' pixels, widened) are cast onto the board
+//    plane instead. tau_sobel drops to a quantile of the region's magnitudes
+//    when the board shows little contrast (another camera's exposure, a board
+//    close in brightness to its background).
 // 2. Border lines: the outer border of the board is densely sampled and would
 //    pull the circle fit, so RANSAC lines are fitted in the board plane and a
 //    line is removed only when it looks like a border: close to the board's
@@ -24,18 +28,69 @@
 namespace l2s {
 namespace {
 
-/// Sobel magnitude of one pixel of an 8-bit gray image, border replicated.
-double sobel_magnitude(const cv::Mat& gray, int x, int y, EdgeFilter::Magnitude kind) {
-  const auto px = [&](int dx, int dy) {
-    const int xx = std::clamp(x + dx, 0, gray.cols - 1);
-    const int yy = std::clamp(y + dy, 0, gray.rows - 1);
-    return static_cast<double>(gray.at<std::uint8_t>(yy, xx));
-  };
-  const double gx = (px(1, -1) + 2 * px(1, 0) + px(1, 1)) - (px(-1, -1) + 2 * px(-1, 0) + px(-1, 1));
-  const double gy = (px(-1, 1) + 2 * px(0, 1) + px(1, 1)) - (px(-1, -1) + 2 * px(0, -1) + px(1, -1));
-  if (kind == EdgeFilter::Magnitude::HalfL1)
-    return 0.5 * std::min(255.0, std::abs(gx)) + 0.5 * std::min(255.0, std::abs(gy));
-  return std::min(255.0, std::hypot(gx, gy));
+/// Sobel magnitude image of a gray crop, scaled to 0..255 as EdgeFilter::Magnitude says.
+cv::Mat sobel_magnitude(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
+  cv::Mat gx, gy, magnitude;
+  cv::Sobel(gray, gx, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Sobel(gray, gy, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  if (kind == EdgeFilter::Magnitude::HalfL1) {
+    cv::Mat ax = cv::min(cv::abs(gx), 255.0f), ay = cv::min(cv::abs(gy), 255.0f);
+    magnitude = 0.5f * ax + 0.5f * ay;
+  } else {
+    cv::magnitude(gx, gy, magnitude);
+    magnitude = cv::min(magnitude, 255.0f);
+  }
+  return magnitude;
+}
+
+struct EdgePixels {
+  std::vector<Eigen::Vector3d> points;  // on the plane, camera frame
+  std::vector<Eigen::Vector2i> pixels;
+  double threshold = 0.0;
+};
+
+/// The image edges of the board's region, cast onto the board plane. The
+/// region is where board points are, widened by a few pixels: stereo gives
+/// no points right at a rim (matching windows straddle it), the image does.
+/// The threshold is the paper's tau_sobel, lowered to a fraction of the
+/// region's strong edges (a high quantile: rims and outline are a few % of the
+/// region) when the board shows little contrast.
+EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const StereoCloud& board,
+                       const Plane& plane, const EdgeFilter::Params& params) {
+  EdgePixels out;
+  cv::Mat mask(gray.size(), CV_8UC1, cv::Scalar(0));
+  for (const Eigen::Vector2i& px : board.pixels)
+    if (px.x() >= 0 && px.y() >= 0 && px.x() < gray.cols && px.y() < gray.rows) mask.at<std::uint8_t>(px.y(), px.x()) = 255;
+  const int k = params.region_dilation_px;
+  cv::dilate(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * k + 1, 2 * k + 1)));
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.area() <= 0) return out;
+  const cv::Rect padded = (box + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, gray.cols, gray.rows);
+  const cv::Mat magnitude = sobel_magnitude(gray(padded), params.magnitude);
+  std::vector<float> values;
+  for (int y = box.y; y < box.y + box.height; ++y)
+    for (int x = box.x; x < box.x + box.width; ++x)
+      if (mask.at<std::uint8_t>(y, x)) values.push_back(magnitude.at<float>(y - padded.y, x - padded.x));
+  if (values.empty()) return out;
+  out.threshold = params.sobel_threshold;
+  if (params.adaptive_quantile > 0.0) {
+    auto q = values.begin() + static_cast<std::ptrdiff_t>(params.adaptive_quantile * (values.size() - 1));
+    std::nth_element(values.begin(), q, values.end());
+    const double adaptive = params.adaptive_fraction * static_cast<double>(*q);
+    out.threshold = std::min(params.sobel_threshold, std::max(params.min_sobel_threshold, adaptive));
+  }
+  for (int y = box.y; y < box.y + box.height; ++y)
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (!mask.at<std::uint8_t>(y, x) || magnitude.at<float>(y - padded.y, x - padded.x) < out.threshold) continue;
+      const Eigen::Vector3d ray((x - camera.cx()) / camera.fx(), (y - camera.cy()) / camera.fy(), 1.0);
+      const double denom = plane.normal().dot(ray);
+      if (std::abs(denom) < 1e-9) continue;
+      const double t = -plane.offset() / denom;
+      if (t <= 0.0) continue;
+      out.points.push_back(t * ray);
+      out.pixels.emplace_back(x, y);
+    }
+  return out;
 }
 
 struct Line2 {
@@ -87,11 +142,18 @@ void EdgeFilter::Params::validate() const {
   if (!(min_border_fraction > 0.0 && min_border_fraction <= 1.0))
     throw ParamError("min_border_fraction", "must be in (0, 1]");
   if (!(max_gap > 0.0)) throw ParamError("max_gap", "must be > 0");
+  if (!(adaptive_quantile >= 0.0 && adaptive_quantile <= 1.0))
+    throw ParamError("adaptive_quantile", "must be in [0, 1]");
+  if (!(adaptive_fraction > 0.0 && adaptive_fraction <= 1.0))
+    throw ParamError("adaptive_fraction", "must be in (0, 1]");
+  if (!(min_sobel_threshold >= 0.0 && min_sobel_threshold <= 255.0))
+    throw ParamError("min_sobel_threshold", "must be in [0, 255]");
+  if (region_dilation_px < 0 || region_dilation_px > 50) throw ParamError("region_dilation_px", "must be 0..50");
 }
 
 EdgeFilter::EdgeFilter(Params params) : params_(params) { params_.validate(); }
 
-EdgeFilter::Result EdgeFilter::filter(const Image& left, const StereoCloud& board_cloud,
+EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camera, const StereoCloud& board_cloud,
                                       const Plane& plane_camera, const Target& target) const {
   target.validate();
   if (board_cloud.pixels.size() != board_cloud.points.size())
@@ -99,17 +161,12 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const StereoCloud& boar
   const cv::Mat gray = detail::gray_mat(left, "left");
   Result result;
   result.input_points = board_cloud.size();
-
-  // 1. Sobel threshold at each point's pixel.
-  std::vector<int> kept;
-  for (std::size_t k = 0; k < board_cloud.size(); ++k) {
-    const Eigen::Vector2i& px = board_cloud.pixels[k];
-    if (px.x() < 0 || px.y() < 0 || px.x() >= gray.cols || px.y() >= gray.rows) continue;
-    if (!board_cloud.points[k].allFinite()) continue;
-    if (sobel_magnitude(gray, px.x(), px.y(), params_.magnitude) >= params_.sobel_threshold)
-      kept.push_back(static_cast<int>(k));
-  }
-  result.edge_points = kept.size();
+  const EdgePixels found = edge_pixels(gray, camera, board_cloud, plane_camera, params_);
+  result.sobel_threshold = found.threshold;
+  result.edge_points = found.points.size();
+  const std::vector<Eigen::Vector3d>& points = found.points;
+  std::vector<int> kept(points.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) kept[k] = static_cast<int>(k);
 
   // 2. Border lines in plane coordinates: "horizontal" is the camera x axis
   // projected into the plane (the board's long side is level), "vertical" its
@@ -123,7 +180,7 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const StereoCloud& boar
   const Eigen::Vector3d e_v = n.cross(e_h);
   std::vector<Eigen::Vector2d> uv(kept.size());
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    const Eigen::Vector3d& p = board_cloud.points[kept[k]];
+    const Eigen::Vector3d& p = points[kept[k]];
     uv[k] = {p.dot(e_h), p.dot(e_v)};
   }
   std::mt19937_64 rng(params_.seed);
@@ -181,12 +238,12 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const StereoCloud& boar
 
   for (std::size_t k = 0; k < kept.size(); ++k) {
     if (removed[k]) continue;
-    result.edges.points.push_back(board_cloud.points[kept[k]]);
-    result.edges.pixels.push_back(board_cloud.pixels[kept[k]]);
+    result.edges.points.push_back(points[kept[k]]);
+    result.edges.pixels.push_back(found.pixels[kept[k]]);
   }
   result.found = !result.edges.points.empty();
   if (!result.found)
-    result.reason = result.edge_points == 0 ? "no board point lies on an image edge"
+    result.reason = result.edge_points == 0 ? "no image edge in the board's region"
                                             : "only border-line points were on edges";
   return result;
 }
