@@ -2,6 +2,7 @@
 
 #include "sim/board_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace l2s::sim {
@@ -80,7 +81,8 @@ bool RayCaster::near_box_outline(const Solid& solid, const Eigen::Vector3d& orig
   const Eigen::Vector3d oc = solid.T_cambody_box.translation() - origin;
   const double along = oc.dot(direction);
   const double R = solid.bound_radius;
-  const double rho = cone.radius0 + cone.slope * (oc.norm() + R);
+  // Only outlines before t_limit matter, so the cone is never wider than there.
+  const double rho = cone.radius0 + cone.slope * std::min(oc.norm() + R, t_limit);
   if (along + R + rho < 0.0 || along - R - rho > t_limit) return false;
   if (oc.squaredNorm() - along * along > (R + rho) * (R + rho)) return false;
   const Eigen::Vector3d o = solid.T_box_cambody * origin;
@@ -94,7 +96,7 @@ bool RayCaster::near_board_outline(const Eigen::Vector3d& origin, const Eigen::V
   const Eigen::Vector3d d = T_board_cambody_.linear() * direction;
   const Eigen::Vector3d oc = o - Eigen::Vector3d(0.0, 0.0, -0.5 * scene_.target.board_thickness);
   const double along = oc.dot(d);
-  const double rho = cone.radius0 + cone.slope * (oc.norm() + board_bound_radius_);
+  const double rho = cone.radius0 + cone.slope * std::min(oc.norm() + board_bound_radius_, t_limit);
   const double reach = board_bound_radius_ + rho / std::max(0.05, std::abs(d.z()));
   if (oc.squaredNorm() - along * along > reach * reach) return false;
   return detail::near_board_outline(scene_.target, hole_centers_, o, d, cone.radius0, cone.slope, t_limit);
