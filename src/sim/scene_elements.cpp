@@ -76,8 +76,9 @@ void add_near_clutter(int count, const BoardPose& pose, Scene* scene) {
   if (height < 0.1 || count <= 0) return;
   const double corridor = scene->side_wall_distance > 0.0 ? scene->side_wall_distance : 1e9;
   for (int k = 0; k < count; ++k) {
-    // Spread over 25..75 % of the way to the board, alternating sides, some in the middle.
-    const double f = 0.25 + 0.5 * (k + 0.5) / count;
+    // Spread over 40..85 % of the way to the board (nearer ones hide under
+    // the lowest beams), alternating sides, some in the middle.
+    const double f = 0.4 + 0.45 * (k + 0.5) / count;
     const double side = (k % 2 == 0) ? 1.0 : -1.0;
     const double offset = (k % 3 == 2) ? 0.0 : side * (0.6 + 0.25 * (k / 2));
     const Eigen::Vector3d size(0.4 + 0.1 * (k % 3), 0.5 - 0.05 * (k % 2), height - 0.05 * (k % 2));
