@@ -59,6 +59,31 @@ class Reader {
   std::string origin_;
 };
 
+/// `lidar_quirks: true|false` (all or none), or a map of the single quirks.
+void read_quirks(const Reader& r, const YAML::Node& node, LidarQuirks* quirks) {
+  if (node.IsScalar()) {
+    bool on = false;
+    try {
+      on = node.as<bool>();
+    } catch (const YAML::Exception&) {
+      r.fail("lidar_quirks", "must be true, false or a map");
+    }
+    *quirks = on ? LidarQuirks::all(quirks->table_seed) : LidarQuirks{};
+    return;
+  }
+  r.only_keys(node, "lidar_quirks", {"laser_table", "beam_footprint", "return_mode", "table_seed"});
+  r.read(node, "laser_table", "lidar_quirks", &quirks->laser_table);
+  r.read(node, "beam_footprint", "lidar_quirks", &quirks->beam_footprint);
+  r.read(node, "table_seed", "lidar_quirks", &quirks->table_seed);
+  std::string mode = return_mode_name(quirks->return_mode);
+  r.read(node, "return_mode", "lidar_quirks", &mode);
+  try {
+    quirks->return_mode = return_mode_from_name(mode, "lidar_quirks.return_mode");
+  } catch (const ParamError& e) {
+    r.fail("lidar_quirks.return_mode", e.problem());
+  }
+}
+
 }  // namespace
 
 SimulationConfig parse_simulation_config(const std::string& yaml_text, const std::string& origin) {
@@ -72,7 +97,7 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
   if (!root || root.IsNull()) return config;
   const Reader r(origin);
   r.only_keys(root, "", {"setting", "sensor_pose", "lidar", "frames", "noise_factor", "seed", "target",
-                         "board_pose", "camera", "scene", "strict_placement", "threads"});
+                         "board_pose", "camera", "scene", "strict_placement", "threads", "lidar_quirks"});
 
   if (root["setting"] && root["sensor_pose"]) r.fail("sensor_pose", "give either setting or sensor_pose");
   if (root["setting"]) {
@@ -137,14 +162,18 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
     r.read(camera, "baseline", "camera", &config.rig.baseline);
   }
   if (const YAML::Node scene = root["scene"]) {
-    r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top",
-                                 "default_clutter", "clutter"});
+    r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top", "default_clutter",
+                                 "clutter", "board_stand", "side_wall_distance", "near_clutter", "pillar"});
     SceneLayout& layout = config.layout;
     r.read(scene, "camera_height", "scene", &layout.camera_height);
     r.read(scene, "wall_gap", "scene", &layout.wall_gap);
     r.read(scene, "wall_half_width", "scene", &layout.wall_half_width);
     r.read(scene, "wall_top", "scene", &layout.wall_top);
     r.read(scene, "default_clutter", "scene", &layout.default_clutter);
+    r.read(scene, "board_stand", "scene", &layout.board_stand);
+    r.read(scene, "side_wall_distance", "scene", &layout.side_wall_distance);
+    r.read(scene, "near_clutter", "scene", &layout.near_clutter);
+    r.read(scene, "pillar", "scene", &layout.pillar);
     if (const YAML::Node boxes = scene["clutter"]) {
       if (!boxes.IsSequence()) r.fail("scene.clutter", "must be a list of boxes");
       for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -161,8 +190,10 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
       }
     }
   }
+  if (const YAML::Node quirks = root["lidar_quirks"]) read_quirks(r, quirks, &config.lidar_quirks);
   try {
     config.validate();
+    config.layout.validate();
   } catch (const ParamError& e) {
     throw FileError(origin, e.what());
   }

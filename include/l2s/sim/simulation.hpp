@@ -3,6 +3,7 @@
 // laid out as DATASET.md says (the paper's Gazebo test suite, Sec. IV-A).
 
 #include <l2s/sim/lidar_model.hpp>
+#include <l2s/sim/lidar_quirks.hpp>
 #include <l2s/sim/placement.hpp>
 #include <l2s/sim/scene.hpp>
 #include <l2s/sim/settings.hpp>
@@ -26,7 +27,7 @@ namespace l2s::sim {
 struct SimulationConfig {
   int setting_index = 1;         ///< 1..9 for Table I, 0 for a custom `setting`
   SensorSetting setting = {-0.8, -0.1, 0.4, 0.0, 0.0, 0.0};  ///< lidar pose in camera body
-  std::string lidar = "vlp16";   ///< vlp16 | hdl32 | hdl64
+  std::string lidar = "vlp16";   ///< vlp16 | hdl32 | hdl64 | avia | mid360 (LidarModel::by_name)
   int frames = 30;               ///< >= 1
   double noise_factor = 1.0;     ///< K, >= 0: sigma = K * 0.008 m (lidar), K * 0.007 (image)
   std::uint64_t seed = 1;        ///< S
@@ -37,6 +38,9 @@ struct SimulationConfig {
   bool strict_placement = true;  ///< throw when the placement check fails, else warn
   int threads = 0;               ///< 0 = hardware concurrency
 
+  // The lidar side of real recordings; all off = the paper's ideal lidar.
+  LidarQuirks lidar_quirks;      ///< per-laser table, beam footprint, return mode
+
   /// Table I setting `index` (1..9) with the given lidar model; throws ParamError.
   static SimulationConfig paper(int index, const std::string& lidar = "vlp16");
 
@@ -46,7 +50,7 @@ struct SimulationConfig {
 
 /// One frame in memory, as the dataset folder will hold it.
 struct SimulatedFrame {
-  LidarCloud lidar;  ///< lidar frame, with ring and intensity
+  LidarCloud lidar;  ///< lidar frame, with intensity and ring (no ring for ring-free lidars)
   Image left;        ///< 8-bit gray
   Image right;
 };
