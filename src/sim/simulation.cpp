@@ -80,11 +80,12 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
     // One pose for all three models, so a setting's scene does not depend on
     // the lidar; only if none exists, a pose for the configured model alone.
     // A ring-free lidar or one with its own laser table joins the three.
-    PlacementSearch search;
+    PlacementSearch search = c.placement_search.value_or(PlacementSearch{});
     search.threads = c.threads;
     std::vector<LidarModel> joint{LidarModel::vlp16(), LidarModel::hdl32(), LidarModel::hdl64()};
     if (!s.model.has_rings() || !s.model.corrections.empty()) joint.push_back(s.model);
-    PlacementResult found = find_placement(c.target, c.setting, joint, c.rig, c.layout, search);
+    PlacementResult found;
+    if (!c.placement_search) found = find_placement(c.target, c.setting, joint, c.rig, c.layout, search);
     if (!found.found) found = find_placement(c.target, c.setting, {s.model}, c.rig, c.layout, search);
     s.pose = found.pose;
   }

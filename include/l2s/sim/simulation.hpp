@@ -40,6 +40,9 @@ struct SimulationConfig {
 
   // The lidar side of real recordings; all off = the paper's ideal lidar.
   LidarQuirks lidar_quirks;      ///< per-laser table, beam footprint, return mode
+  /// The grid the auto-placement searches for the configured lidar alone;
+  /// empty: the default grid, one pose for all three spinning models.
+  std::optional<PlacementSearch> placement_search;
 
   /// Table I setting `index` (1..9) with the given lidar model; throws ParamError.
   static SimulationConfig paper(int index, const std::string& lidar = "vlp16");
