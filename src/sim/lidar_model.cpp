@@ -193,8 +193,12 @@ void validate_rosette(const RosetteScan& r) {
 }  // namespace
 
 void LidarModel::validate() const {
-  if (pattern == ScanPattern::Spinning) validate_spinning(*this);
-  else validate_rosette(rosette);
+  if (pattern == ScanPattern::Spinning) {
+    validate_spinning(*this);
+  } else {
+    validate_rosette(rosette);
+    if (!corrections.empty()) throw ParamError("lidar.corrections", "a rosette lidar has no laser table");
+  }
   if (!(min_range >= 0.0 && max_range > min_range))
     throw ParamError("lidar.max_range", "must exceed min_range >= 0");
   if (!(range_sigma0 >= 0.0)) throw ParamError("lidar.range_sigma0", "must be >= 0");

@@ -59,6 +59,37 @@ class Reader {
   std::string origin_;
 };
 
+/// The `scene` map: the world around the board and the elements of real recordings.
+void read_scene(const Reader& r, const YAML::Node& scene, SceneLayout* out) {
+  SceneLayout& layout = *out;
+  r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top", "default_clutter",
+                               "clutter", "board_stand", "side_wall_distance", "near_clutter", "pillar"});
+  r.read(scene, "camera_height", "scene", &layout.camera_height);
+  r.read(scene, "wall_gap", "scene", &layout.wall_gap);
+  r.read(scene, "wall_half_width", "scene", &layout.wall_half_width);
+  r.read(scene, "wall_top", "scene", &layout.wall_top);
+  r.read(scene, "default_clutter", "scene", &layout.default_clutter);
+  r.read(scene, "board_stand", "scene", &layout.board_stand);
+  r.read(scene, "side_wall_distance", "scene", &layout.side_wall_distance);
+  r.read(scene, "near_clutter", "scene", &layout.near_clutter);
+  r.read(scene, "pillar", "scene", &layout.pillar);
+  if (const YAML::Node boxes = scene["clutter"]) {
+    if (!boxes.IsSequence()) r.fail("scene.clutter", "must be a list of boxes");
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      const std::string where = "scene.clutter[" + std::to_string(i) + "]";
+      r.only_keys(boxes[i], where, {"center", "size", "yaw"});
+      if (!boxes[i]["center"] || !boxes[i]["size"]) r.fail(where, "needs center and size");
+      double yaw = 0.0;
+      r.read(boxes[i], "yaw", where, &yaw);
+      Box box;
+      box.T_cambody_box.linear() = rotation_zyx(yaw, 0.0, 0.0);
+      box.T_cambody_box.translation() = r.vector3(boxes[i]["center"], where + ".center");
+      box.half_size = 0.5 * r.vector3(boxes[i]["size"], where + ".size");
+      layout.extra_clutter.push_back(box);
+    }
+  }
+}
+
 /// `lidar_quirks: true|false` (all or none), or a map of the single quirks.
 void read_quirks(const Reader& r, const YAML::Node& node, LidarQuirks* quirks) {
   if (node.IsScalar()) {
@@ -161,35 +192,7 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
     r.read(camera, "horizontal_fov", "camera", &config.rig.horizontal_fov);
     r.read(camera, "baseline", "camera", &config.rig.baseline);
   }
-  if (const YAML::Node scene = root["scene"]) {
-    r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top", "default_clutter",
-                                 "clutter", "board_stand", "side_wall_distance", "near_clutter", "pillar"});
-    SceneLayout& layout = config.layout;
-    r.read(scene, "camera_height", "scene", &layout.camera_height);
-    r.read(scene, "wall_gap", "scene", &layout.wall_gap);
-    r.read(scene, "wall_half_width", "scene", &layout.wall_half_width);
-    r.read(scene, "wall_top", "scene", &layout.wall_top);
-    r.read(scene, "default_clutter", "scene", &layout.default_clutter);
-    r.read(scene, "board_stand", "scene", &layout.board_stand);
-    r.read(scene, "side_wall_distance", "scene", &layout.side_wall_distance);
-    r.read(scene, "near_clutter", "scene", &layout.near_clutter);
-    r.read(scene, "pillar", "scene", &layout.pillar);
-    if (const YAML::Node boxes = scene["clutter"]) {
-      if (!boxes.IsSequence()) r.fail("scene.clutter", "must be a list of boxes");
-      for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const std::string where = "scene.clutter[" + std::to_string(i) + "]";
-        r.only_keys(boxes[i], where, {"center", "size", "yaw"});
-        if (!boxes[i]["center"] || !boxes[i]["size"]) r.fail(where, "needs center and size");
-        double yaw = 0.0;
-        r.read(boxes[i], "yaw", where, &yaw);
-        Box box;
-        box.T_cambody_box.linear() = rotation_zyx(yaw, 0.0, 0.0);
-        box.T_cambody_box.translation() = r.vector3(boxes[i]["center"], where + ".center");
-        box.half_size = 0.5 * r.vector3(boxes[i]["size"], where + ".size");
-        layout.extra_clutter.push_back(box);
-      }
-    }
-  }
+  if (const YAML::Node scene = root["scene"]) read_scene(r, scene, &config.layout);
   if (const YAML::Node quirks = root["lidar_quirks"]) read_quirks(r, quirks, &config.lidar_quirks);
   try {
     config.validate();
