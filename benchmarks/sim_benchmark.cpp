@@ -1,8 +1,9 @@
-// Simulator throughput: one lidar sweep, the clean stereo render (once per
-// dataset) for the paper's look and for a raw rig with shadows and every
-// other look, per-frame image noise (gray and colour), and the board
-// placement search.
+// Simulator throughput: one lidar sweep (ideal and with a real unit's quirks),
+// one rosette frame, the clean stereo render (once per dataset) for the
+// paper's look and for a raw rig with shadows and every other look, per-frame
+// image noise (gray and colour), and the board placement search.
 
+#include <l2s/sim/lidar_quirks.hpp>
 #include <l2s/sim/lidar_simulator.hpp>
 #include <l2s/sim/placement.hpp>
 #include <l2s/sim/settings.hpp>
@@ -23,9 +24,15 @@ LidarModel model_for(int beams) {
   return beams == 16 ? LidarModel::vlp16() : beams == 32 ? LidarModel::hdl32() : LidarModel::hdl64();
 }
 
-void BM_LidarSimulator_Sweep(benchmark::State& state) {
+/// A simulator of `model`, with every quirk (laser table, beam footprint) when asked.
+LidarSimulator simulator_for(const LidarModel& model, bool quirks) {
+  LidarSimulator::Params params;
+  params.beam_footprint = quirks;
+  return LidarSimulator(quirks ? with_quirks(model, LidarQuirks::all(1)) : model, params);
+}
+
+void run_sweeps(benchmark::State& state, const LidarSimulator& lidar) {
   const RayCaster caster(bench_scene());
-  const LidarSimulator lidar(model_for(static_cast<int>(state.range(0))));
   const Eigen::Isometry3d T = paper_setting(8).T_cambody_lidar();
   std::uint64_t frame = 0;
   std::size_t points = 0;
@@ -36,7 +43,25 @@ void BM_LidarSimulator_Sweep(benchmark::State& state) {
   }
   state.counters["points"] = static_cast<double>(points);
 }
-BENCHMARK(BM_LidarSimulator_Sweep)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMillisecond);
+
+// A spinning sweep, ideal (quirks:0) or as a real unit (quirks:1).
+void BM_LidarSimulator_Sweep(benchmark::State& state) {
+  run_sweeps(state, simulator_for(model_for(static_cast<int>(state.range(0))), state.range(1) != 0));
+}
+BENCHMARK(BM_LidarSimulator_Sweep)
+    ->ArgsProduct({{16, 32, 64}, {0, 1}})
+    ->ArgNames({"beams", "quirks"})
+    ->Unit(benchmark::kMillisecond);
+
+// One 0.1 s frame of a ring-free rosette lidar (mid360:0 the Avia, 1 the Mid-360).
+void BM_LidarSimulator_RosetteFrame(benchmark::State& state) {
+  const LidarModel model = state.range(0) == 0 ? LidarModel::avia() : LidarModel::mid360();
+  run_sweeps(state, simulator_for(model, state.range(1) != 0));
+}
+BENCHMARK(BM_LidarSimulator_RosetteFrame)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgNames({"mid360", "quirks"})
+    ->Unit(benchmark::kMillisecond);
 
 /// 640x480, 1280x960 or 1920x1200 (the largest sensor of the randomised scenes).
 StereoRig rig_of_width(int width) {

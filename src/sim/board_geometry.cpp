@@ -2,6 +2,7 @@
 
 #include <l2s/sim/ray_caster.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -47,6 +48,37 @@ Eigen::Vector2d other_axes(const Eigen::Vector3d& p, int axis) {
   if (axis == 0) return {p.y(), p.z()};
   if (axis == 1) return {p.x(), p.z()};
   return {p.x(), p.y()};
+}
+
+/// Distance from point c to the segment [a, b] in the plane.
+double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0.0 ? std::clamp((c - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + s * ab - c).norm();
+}
+
+/// Whether the segment [a, b] meets the rectangle |p_i| <= half_i (2D slab test).
+bool segment_meets_rectangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& half) {
+  double s0 = 0.0, s1 = 1.0;
+  const Eigen::Vector2d ab = b - a;
+  for (int i = 0; i < 2; ++i) {
+    if (std::abs(ab[i]) < 1e-300) {
+      if (std::abs(a[i]) > half[i]) return false;
+      continue;
+    }
+    double lo = (-half[i] - a[i]) / ab[i];
+    double hi = (half[i] - a[i]) / ab[i];
+    if (lo > hi) std::swap(lo, hi);
+    s0 = std::max(s0, lo);
+    s1 = std::min(s1, hi);
+    if (s0 > s1) return false;
+  }
+  return true;
+}
+
+bool inside_rectangle(const Eigen::Vector2d& p, const Eigen::Vector2d& half) {
+  return std::abs(p.x()) < half.x() && std::abs(p.y()) < half.y();
 }
 
 }  // namespace
@@ -123,6 +155,55 @@ bool intersect_board(const Target& target, const std::array<Eigen::Vector2d, 4>&
     hit->uv = other_axes(p, axis);
   }
   return true;
+}
+
+bool near_box_outline(const Eigen::Vector3d& half, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                      double rho, double t_limit) {
+  double t0 = 0.0, t1 = 0.0;
+  int axis = 0, side = 0;
+  const Eigen::Vector3d grown = half + Eigen::Vector3d::Constant(rho);
+  if (!slab_interval(Eigen::Vector3d::Zero(), grown, o, d, &t0, &t1, &axis, &side)) return false;
+  if (t1 <= 0.0 || t0 > t_limit) return false;
+  const Eigen::Vector3d shrunk = half - Eigen::Vector3d::Constant(rho);
+  if (shrunk.minCoeff() <= 0.0) return true;
+  // A ray through the shrunk box keeps its whole beam on the box (the box is convex).
+  return !slab_interval(Eigen::Vector3d::Zero(), shrunk, o, d, &t0, &t1, &axis, &side) || t1 <= 0.0;
+}
+
+bool near_board_outline(const Target& target, const std::array<Eigen::Vector2d, 4>& holes,
+                        const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius0, double slope,
+                        double t_limit) {
+  const double thickness = target.board_thickness;
+  const Eigen::Vector2d half(0.5 * target.board_width, 0.5 * target.board_height);
+  // Nearly edge-on: the footprint smears over the board; say yes if the ray comes close at all.
+  if (std::abs(d.z()) < 0.02) {
+    const double rho = radius0 + slope * (o.norm() + half.norm());
+    const Eigen::Vector3d grown(half.x() + rho, half.y() + rho, 0.5 * thickness + rho);
+    double t0 = 0.0, t1 = 0.0;
+    int axis = 0, side = 0;
+    return slab_interval(Eigen::Vector3d(0.0, 0.0, -0.5 * thickness), grown, o, d, &t0, &t1, &axis, &side) &&
+           t1 > 0.0 && t0 <= t_limit;
+  }
+  const double t_front = -o.z() / d.z();
+  const double t_back = (-thickness - o.z()) / d.z();
+  const double t_near = std::min(t_front, t_back);
+  if (std::max(t_front, t_back) <= 0.0) return false;
+  // The footprint on the board plane: the beam's radius, stretched by the incidence.
+  const double rho = (radius0 + slope * std::max(t_front, t_back)) / std::abs(d.z());
+  if (t_near - rho > t_limit) return false;  // hidden behind the centre ray's hit
+  const Eigen::Vector2d a = (o + std::max(0.0, t_front) * d).head<2>();
+  const Eigen::Vector2d b = (o + std::max(0.0, t_back) * d).head<2>();
+  const Eigen::Vector2d grown = half + Eigen::Vector2d::Constant(rho);
+  if (!segment_meets_rectangle(a, b, grown)) return false;
+  const Eigen::Vector2d shrunk = half - Eigen::Vector2d::Constant(rho);
+  if (!(shrunk.minCoeff() > 0.0 && inside_rectangle(a, shrunk) && inside_rectangle(b, shrunk))) return true;
+  const double r = target.hole_radius;
+  for (const Eigen::Vector2d& c : holes) {
+    const double closest = segment_distance(a, b, c);
+    const double farthest = std::max((a - c).norm(), (b - c).norm());
+    if (closest < r + rho && farthest > r - rho) return true;
+  }
+  return false;
 }
 
 }  // namespace l2s::sim::detail

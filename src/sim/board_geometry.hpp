@@ -1,6 +1,7 @@
 #pragma once
 // Ray intersection with the two solids of the scene, in their own frames:
-// an axis-aligned box, and the board (a box minus four cylinders along z).
+// an axis-aligned box, and the board (a box minus four cylinders along z);
+// and whether a widening beam around a ray comes near their outlines.
 
 #include <l2s/target.hpp>
 
@@ -29,5 +30,19 @@ bool intersect_box(const Eigen::Vector3d& center, const Eigen::Vector3d& half,
 bool intersect_board(const Target& target, const std::array<Eigen::Vector2d, 4>& holes,
                      const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_max,
                      LocalHit* hit);
+
+/// Whether a beam of radius `rho` around the ray o + t d straddles the outline
+/// of the box |p_i| <= half_i before `t_limit`: it meets the box grown by rho
+/// but does not pass through the box shrunk by rho. Conservative.
+bool near_box_outline(const Eigen::Vector3d& half, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                      double rho, double t_limit);
+
+/// The same for the board (frame of intersect_board), its outer border and
+/// hole rims, for a beam of radius radius0 + slope * t: the ray's path
+/// through the slab, projected on the board plane, comes within the beam's
+/// footprint of a border or rim. Conservative.
+bool near_board_outline(const Target& target, const std::array<Eigen::Vector2d, 4>& holes,
+                        const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius0, double slope,
+                        double t_limit);
 
 }  // namespace l2s::sim::detail

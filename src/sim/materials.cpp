@@ -146,7 +146,10 @@ Albedo Materials::surface(const Hit& hit, double footprint) const {
     case SurfaceId::Board: return board(hit, footprint);
     case SurfaceId::Wall: return wall(hit, footprint);
     case SurfaceId::Ground:
-    case SurfaceId::Clutter: return suite_look(hit, seed_);
+    case SurfaceId::Clutter:
+    case SurfaceId::Stand:
+    case SurfaceId::SideWall:
+    case SurfaceId::Pillar: return suite_look(hit, seed_);
     case SurfaceId::None: return sky(Eigen::Vector3d::UnitX());
     default: return concrete(hit, footprint, seed_);
   }

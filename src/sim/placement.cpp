@@ -1,14 +1,17 @@
 // The placement check: what the calibrator needs to see (paper, Sec. III-B/C).
 // Image side: the board outline and all four holes inside both images with a
-// margin, unoccluded, holes see-through. Lidar side: for every hole, at least
-// two rings whose rays pass through the hole onto the wall for any azimuth
-// offset of the sweep, with board returns on both sides (the depth
-// discontinuities the lidar hole detector looks for). Both sensors must see
-// the board roughly vertical (the calibrator's alpha_plane test).
+// margin, unoccluded, holes see-through. Lidar side (placement_lidar.cpp):
+// rings across each hole, or returns through and around it for a ring-free
+// lidar. Both sensors must see the board roughly vertical (the calibrator's
+// alpha_plane test), and it must stand free of the ground and side walls.
 
 #include <l2s/sim/placement.hpp>
 
 #include <l2s/sim/ray_caster.hpp>
+
+#include <l2s/error.hpp>
+
+#include "sim/placement_lidar.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,10 +20,7 @@
 namespace l2s::sim {
 namespace {
 
-const char* const kHoleNames[4] = {"TopLeft", "TopRight", "BottomLeft", "BottomRight"};
-
-/// Samples per azimuth step when measuring a ring's path across a hole.
-constexpr int kFine = 4;
+using detail::kHoleNames;
 
 /// Points on the board's outline and hole rims (front and back faces), board frame.
 std::vector<Eigen::Vector3d> outline_points(const Target& target) {
@@ -111,72 +111,25 @@ void check_camera(const RayCaster& caster, const StereoRig& rig, int index,
   }
 }
 
-/// How ring `ring` crosses hole `hole`, for the worst azimuth offset.
-RingCrossing cross_ring(const RayCaster& caster, const LidarModel& lidar,
-                        const Eigen::Isometry3d& T_cambody_lidar, int hole, int ring,
-                        double azimuth_center, double half_window) {
-  RingCrossing crossing;
-  crossing.hole = hole;
-  crossing.ring = ring;
-  const double fine = lidar.azimuth_step / kFine;
-  const int n = static_cast<int>(std::ceil(half_window / fine));
-  const double el = lidar.elevations[ring];
-  const Eigen::Vector3d origin = T_cambody_lidar.translation();
-  // 0 other, 1 board, 2 through onto the wall, 3 through onto something else.
-  std::vector<int> cls(static_cast<std::size_t>(2 * n + 1));
-  for (int i = -n; i <= n; ++i) {
-    const double az = azimuth_center + i * fine;
-    const Eigen::Vector3d dir = T_cambody_lidar.linear() *
-        Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-    const Hit hit = caster.cast(origin, dir);
-    int c = 0;
-    if (hit.surface == SurfaceId::Board && hit.t >= lidar.min_range && hit.t <= lidar.max_range)
-      c = 1;
-    else if (hit.surface != SurfaceId::Board && caster.hole_on_front_plane(origin, dir) == hole)
-      c = (hit.surface == SurfaceId::Wall && hit.t <= lidar.max_range) ? 2 : 3;
-    cls[static_cast<std::size_t>(i + n)] = c;
-  }
-  // The longest run of samples through the hole.
-  int best_begin = -1, best_len = 0;
-  for (int i = 0; i < static_cast<int>(cls.size());) {
-    if (cls[i] < 2) {
-      ++i;
-      continue;
-    }
-    int j = i;
-    while (j < static_cast<int>(cls.size()) && cls[j] >= 2) ++j;
-    if (j - i > best_len) {
-      best_len = j - i;
-      best_begin = i;
-    }
-    i = j;
-  }
-  if (best_len == 0) return crossing;
-  // n samples span at least (n - 1) fine steps, so any offset puts at least
-  // floor((n - 1) / kFine) firings inside.
-  crossing.rays_through = (best_len - 1) / kFine;
-  for (int i = best_begin; i < best_begin + best_len; ++i)
-    if (cls[i] == 3) crossing.background_is_wall = false;
-  const auto board_run = [&](int start, int step) {
-    int count = 0;
-    for (int i = start; i >= 0 && i < static_cast<int>(cls.size()) && cls[i] == 1; i += step) ++count;
-    return count;
-  };
-  const int left = board_run(best_begin - 1, -1);
-  const int right = board_run(best_begin + best_len, +1);
-  crossing.board_both_sides = left > kFine && right > kFine;
-  return crossing;
-}
-
 }  // namespace
 
 std::string PlacementReport::summary() const {
   std::ostringstream s;
   s.precision(3);
-  s << (ok ? "placement ok" : "placement FAILS") << ": image margin " << image_margin
-    << " px, rings per hole [" << rings_per_hole[0] << " " << rings_per_hole[1] << " "
-    << rings_per_hole[2] << " " << rings_per_hole[3] << "], normal elevation camera "
-    << normal_elevation_camera << " rad, lidar " << normal_elevation_lidar << " rad";
+  const auto four = [&](const std::array<int, 4>& v) {
+    s << "[" << v[0] << " " << v[1] << " " << v[2] << " " << v[3] << "]";
+  };
+  s << (ok ? "placement ok" : "placement FAILS") << ": image margin " << image_margin << " px, ";
+  if (ring_free) {
+    s << "returns through holes ";
+    four(returns_through_hole);
+    s << ", around them ";
+    four(returns_around_hole);
+  } else {
+    s << "rings per hole ";
+    four(rings_per_hole);
+  }
+  s << ", normal elevation camera " << normal_elevation_camera << " rad, lidar " << normal_elevation_lidar << " rad";
   for (const std::string& f : failures) s << "\n  - " << f;
   return s.str();
 }
@@ -184,6 +137,8 @@ std::string PlacementReport::summary() const {
 PlacementReport check_placement(const Scene& scene, const LidarModel& lidar,
                                 const SensorSetting& setting, const StereoRig& rig,
                                 const PlacementRequirements& req) {
+  if (!(req.accumulation_time > 0.0 && req.accumulation_time <= 60.0))
+    throw ParamError("placement.accumulation_time", "must be in (0, 60] s");
   PlacementReport report;
   const RayCaster caster(scene);
   const Eigen::Isometry3d T_cambody_lidar = setting.T_cambody_lidar();
@@ -219,6 +174,15 @@ PlacementReport check_placement(const Scene& scene, const LidarModel& lidar,
         lowest = std::min(lowest, (scene.T_cambody_board * Eigen::Vector3d(sx * scene.target.board_width,
                                                                            sy * scene.target.board_height, z)).z());
   if (lowest < scene.ground_z + 0.05) report.failures.push_back("board reaches into the ground");
+  if (scene.side_wall_distance > 0.0) {
+    double widest = 0.0;
+    for (double sx : {-0.5, 0.5})
+      for (double z : {0.0, -scene.target.board_thickness})
+        widest = std::max(widest, std::abs((scene.T_cambody_board * Eigen::Vector3d(sx * scene.target.board_width, 0.0, z)).y()));
+    if (widest > scene.side_wall_distance - 0.05)
+      report.failures.push_back("board reaches into a side wall (" + std::to_string(widest) + " m from the centre line, walls at " +
+                                std::to_string(scene.side_wall_distance) + " m)");
+  }
 
   ImageCheck image;
   check_camera(caster, rig, 0, req, &image);
@@ -226,49 +190,10 @@ PlacementReport check_placement(const Scene& scene, const LidarModel& lidar,
   report.image_margin = image.margin;
   report.failures.insert(report.failures.end(), image.failures.begin(), image.failures.end());
 
-  // Lidar: the rings that come near each hole.
-  const auto holes = scene.target.hole_centers();
-  int second_min = 1 << 30;
-  for (int hole = 0; hole < 4; ++hole) {
-    const Eigen::Vector3d c = T_lidar_cambody * (scene.T_cambody_board *
-                                                 Eigen::Vector3d(holes[hole].x(), holes[hole].y(), 0.0));
-    const double range = c.norm();
-    const double azimuth = std::atan2(c.y(), c.x());
-    const double elevation = std::atan2(c.z(), std::hypot(c.x(), c.y()));
-    const double radius = std::asin(std::min(1.0, (scene.target.hole_radius + 0.02) / range));
-    // Wide enough for the hole plus board on each side at any incidence.
-    const double half_window = radius / std::max(0.2, std::cos(elevation)) + 3.0 * lidar.azimuth_step;
-    std::vector<int> rays;
-    for (int ring = 0; ring < lidar.rings(); ++ring) {
-      if (std::abs(lidar.elevations[ring] - elevation) > radius) continue;
-      const RingCrossing crossing =
-          cross_ring(caster, lidar, T_cambody_lidar, hole, ring, azimuth, half_window);
-      if (crossing.rays_through == 0) continue;
-      report.crossings.push_back(crossing);
-      if (crossing.counts()) {
-        ++report.rings_per_hole[hole];
-        rays.push_back(crossing.rays_through);
-      }
-    }
-    std::sort(rays.rbegin(), rays.rend());
-    second_min = std::min(second_min, rays.size() >= 2 ? rays[1] : 0);
-    if (report.rings_per_hole[hole] < req.min_rings_per_hole) {
-      s.str("");
-      s << lidar.name << ": hole " << kHoleNames[hole] << " crossed by " << report.rings_per_hole[hole]
-        << " ring(s), need " << req.min_rings_per_hole << " (rings near it:";
-      int listed = 0;
-      for (const RingCrossing& rc : report.crossings) {
-        if (rc.hole != hole) continue;
-        s << " " << rc.ring << ":" << rc.rays_through << " rays" << (rc.board_both_sides ? "" : " no board both sides")
-          << (rc.background_is_wall ? "" : " background not the wall");
-        ++listed;
-      }
-      if (listed == 0) s << " none";
-      s << ")";
-      report.failures.push_back(s.str());
-    }
-  }
-  report.min_rays_second_ring = second_min;
+  if (lidar.has_rings())
+    detail::check_lidar_rings(caster, lidar, T_cambody_lidar, req, &report);
+  else
+    detail::check_lidar_rosette(caster, lidar, T_cambody_lidar, req, &report);
   report.ok = report.failures.empty();
   return report;
 }

@@ -9,6 +9,7 @@
 
 #include <l2s/error.hpp>
 
+#include "sim/laser_beam.hpp"
 #include "sim/parallel.hpp"
 
 #include <algorithm>
@@ -34,10 +35,48 @@ double score(const Margins& m, const PlacementRequirements& req) {
          0.5 * (req.max_normal_elevation - m.elevation) / req.max_normal_elevation;
 }
 
+/// A ring-free lidar's margins in the units of a ring lidar's: enough
+/// returns count as two spare rings, too few as one ring short; the rays of
+/// the second ring grow with the returns through the hole.
+void add_rosette_margins(int through, int around, const PlacementRequirements& req, Margins* m) {
+  const bool enough = through >= req.min_returns_through_hole && around >= req.min_returns_around_hole;
+  m->rings = std::min(m->rings, req.min_rings_per_hole + (enough ? 2 : -1));
+  m->second_rays = std::min(m->second_rays, std::min(20, 20 * through / std::max(1, 4 * req.min_returns_through_hole)));
+}
+
+struct RosetteExpectation {
+  int through = 0;  ///< returns through the hole in the accumulation time
+  int around = 0;   ///< returns in the 4 cm ring around its rim
+};
+
+/// Expected returns through and around a hole centred at `c` (lidar frame) of
+/// angular radius `alpha`: the firings of the accumulation time times the
+/// share of the field of view the hole covers (the rosette's density taken
+/// as even), zero outside the field of view or the range.
+RosetteExpectation expect_rosette(const LidarModel& lidar, const Eigen::Vector3d& c, double facing, double alpha,
+                                  double hole_radius, const PlacementRequirements& req) {
+  const RosetteScan& r = lidar.rosette;
+  const double range = c.norm();
+  const double azimuth = std::atan2(c.y(), c.x());
+  const double elevation = std::atan2(c.z(), std::hypot(c.x(), c.y()));
+  const bool turning = r.rotation_rate > 0.0;
+  const bool in_view = (turning || std::abs(azimuth) + alpha < r.azimuth_half_width) &&
+                       elevation - alpha > r.elevation_min && elevation + alpha < r.elevation_max &&
+                       range > lidar.min_range && range < lidar.max_range;
+  if (!in_view) return {};
+  const double span = r.elevation_max - r.elevation_min;
+  const double fov = turning ? 2.0 * M_PI * span : M_PI * r.azimuth_half_width * 0.5 * span;  // [rad^2]
+  const double firings = req.accumulation_time * r.point_rate;
+  const double hole = M_PI * alpha * alpha * facing;
+  const double rim = facing * M_PI * (std::pow(alpha * (1.0 + 0.04 / hole_radius), 2) - alpha * alpha);
+  return {static_cast<int>(firings * hole / fov), static_cast<int>(firings * rim / fov)};
+}
+
 /// Closed-form margins: projected corners, hole discs as seen from the lidar
-/// (rings within the hole's angular radius, chord length per ring). No ray casting.
+/// (rings within the hole's angular radius, chord length per ring; expected
+/// returns for a ring-free lidar). No ray casting.
 Margins estimate(const Target& target, const BoardPose& pose, const SensorSetting& setting,
-                 const std::vector<LidarModel>& lidars, const StereoRig& rig) {
+                 const std::vector<LidarModel>& lidars, const StereoRig& rig, const PlacementRequirements& req) {
   Margins m;
   const Eigen::Isometry3d T_cambody_board = pose.T_cambody_board();
   m.image = 1e9;
@@ -68,8 +107,14 @@ Margins estimate(const Target& target, const BoardPose& pose, const SensorSettin
     const double alpha = std::asin(std::min(1.0, target.hole_radius / c.norm()));
     const double elevation = std::atan2(c.z(), std::hypot(c.x(), c.y()));
     for (const LidarModel& lidar : lidars) {
+      if (!lidar.has_rings()) {
+        const RosetteExpectation e = expect_rosette(lidar, c, facing, alpha, target.hole_radius, req);
+        add_rosette_margins(e.through, e.around, req, &m);
+        continue;
+      }
       std::vector<int> rays;
-      for (double el : lidar.elevations) {
+      for (int ring = 0; ring < lidar.rings(); ++ring) {
+        const double el = detail::apparent_elevation(lidar, ring, std::hypot(c.x(), c.y()));
         const double d = std::abs(el - elevation);
         if (d >= alpha) continue;
         const double chord = 2.0 * std::sqrt(alpha * alpha - d * d) * facing / std::cos(elevation);
@@ -84,11 +129,15 @@ Margins estimate(const Target& target, const BoardPose& pose, const SensorSettin
   return m;
 }
 
-Margins exact(const std::vector<PlacementReport>& reports) {
+Margins exact(const std::vector<PlacementReport>& reports, const PlacementRequirements& req) {
   Margins m{1 << 30, 1 << 30, 1e9, 0.0};
   for (const auto& r : reports) {
-    m.second_rays = std::min(m.second_rays, r.min_rays_second_ring);
-    m.rings = std::min(m.rings, *std::min_element(r.rings_per_hole.begin(), r.rings_per_hole.end()));
+    if (r.ring_free) {
+      for (int h = 0; h < 4; ++h) add_rosette_margins(r.returns_through_hole[h], r.returns_around_hole[h], req, &m);
+    } else {
+      m.second_rays = std::min(m.second_rays, r.min_rays_second_ring);
+      m.rings = std::min(m.rings, *std::min_element(r.rings_per_hole.begin(), r.rings_per_hole.end()));
+    }
     m.image = std::min(m.image, r.image_margin);
     m.elevation = std::max({m.elevation, r.normal_elevation_camera, r.normal_elevation_lidar});
   }
@@ -117,7 +166,7 @@ PlacementResult find_placement(const Target& target, const SensorSetting& settin
 
   std::vector<double> estimated(poses.size());
   detail::parallel_for(static_cast<int>(poses.size()), search.threads, [&](int i) {
-    estimated[i] = score(estimate(target, poses[i], setting, lidars, rig), req);
+    estimated[i] = score(estimate(target, poses[i], setting, lidars, rig, req), req);
   }, 256);
   std::vector<int> order(poses.size());
   std::iota(order.begin(), order.end(), 0);
@@ -140,7 +189,7 @@ PlacementResult find_placement(const Target& target, const SensorSetting& settin
         if (!reports.back().ok) return;  // cheapest verdict first: the first model fails
       }
       passed[k] = 1;
-      scores[k] = score(exact(reports), req);
+      scores[k] = score(exact(reports, req), req);
     }, 1);
     for (int k = 0; k < count; ++k) {
       // Ties go to the better estimate, then to grid order (stable sort above).

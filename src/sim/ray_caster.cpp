@@ -2,6 +2,7 @@
 
 #include "sim/board_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace l2s::sim {
@@ -9,9 +10,16 @@ namespace l2s::sim {
 RayCaster::RayCaster(const Scene& scene)
     : scene_(scene),
       T_board_cambody_(scene.T_cambody_board.inverse()),
-      T_wall_cambody_(scene.wall.T_cambody_box.inverse()),
       hole_centers_(scene.target.hole_centers()) {
-  for (const Box& box : scene_.clutter) T_clutter_cambody_.push_back(box.T_cambody_box.inverse());
+  const auto add = [this](SurfaceId surface, const Box& box) {
+    solids_.push_back(Solid{surface, box.T_cambody_box, box.T_cambody_box.inverse(), box.half_size,
+                            box.half_size.norm() + 1e-6});
+  };
+  add(SurfaceId::Wall, scene_.wall);
+  for (const Box& box : scene_.clutter) add(SurfaceId::Clutter, box);
+  for (const Box& box : scene_.stand) add(SurfaceId::Stand, box);
+  for (const Box& box : scene_.side_walls) add(SurfaceId::SideWall, box);
+  for (const Box& box : scene_.pillars) add(SurfaceId::Pillar, box);
   const Target& b = scene_.target;
   board_bound_radius_ =
       0.5 * std::sqrt(b.board_width * b.board_width + b.board_height * b.board_height +
@@ -41,18 +49,11 @@ Hit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direct
     best.uv = local.uv;
   };
 
-  {
-    const Eigen::Vector3d o = T_wall_cambody_ * origin;
-    const Eigen::Vector3d d = T_wall_cambody_.linear() * direction;
-    if (detail::intersect_box(Eigen::Vector3d::Zero(), scene_.wall.half_size, o, d, best.t, &local))
-      take(SurfaceId::Wall, scene_.wall.T_cambody_box);
-  }
-  for (std::size_t i = 0; i < scene_.clutter.size(); ++i) {
-    const Eigen::Vector3d o = T_clutter_cambody_[i] * origin;
-    const Eigen::Vector3d d = T_clutter_cambody_[i].linear() * direction;
-    if (detail::intersect_box(Eigen::Vector3d::Zero(), scene_.clutter[i].half_size, o, d, best.t,
-                              &local))
-      take(SurfaceId::Clutter, scene_.clutter[i].T_cambody_box);
+  for (const Solid& solid : solids_) {
+    const Eigen::Vector3d o = solid.T_box_cambody * origin;
+    const Eigen::Vector3d d = solid.T_box_cambody.linear() * direction;
+    if (detail::intersect_box(Eigen::Vector3d::Zero(), solid.half_size, o, d, best.t, &local))
+      take(solid.surface, solid.T_cambody_box);
   }
 
   // Board, after a cheap bounding-sphere rejection (most rays miss it).
@@ -65,6 +66,40 @@ Hit RayCaster::cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direct
       detail::intersect_board(scene_.target, hole_centers_, o, d, best.t, &local))
     take(SurfaceId::Board, scene_.T_cambody_board);
   return best;
+}
+
+bool RayCaster::near_outline(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                             const Cone& cone, double t_limit) const {
+  for (const Solid& solid : solids_)
+    if (near_box_outline(solid, origin, direction, cone, t_limit)) return true;
+  return near_board_outline(origin, direction, cone, t_limit);
+}
+
+bool RayCaster::near_box_outline(const Solid& solid, const Eigen::Vector3d& origin,
+                                 const Eigen::Vector3d& direction, const Cone& cone, double t_limit) const {
+  // Bounding sphere first, widened by the cone's radius at its far side.
+  const Eigen::Vector3d oc = solid.T_cambody_box.translation() - origin;
+  const double along = oc.dot(direction);
+  const double R = solid.bound_radius;
+  // Only outlines before t_limit matter, so the cone is never wider than there.
+  const double rho = cone.radius0 + cone.slope * std::min(oc.norm() + R, t_limit);
+  if (along + R + rho < 0.0 || along - R - rho > t_limit) return false;
+  if (oc.squaredNorm() - along * along > (R + rho) * (R + rho)) return false;
+  const Eigen::Vector3d o = solid.T_box_cambody * origin;
+  const Eigen::Vector3d d = solid.T_box_cambody.linear() * direction;
+  return detail::near_box_outline(solid.half_size, o, d, rho, t_limit);
+}
+
+bool RayCaster::near_board_outline(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                   const Cone& cone, double t_limit) const {
+  const Eigen::Vector3d o = T_board_cambody_ * origin;
+  const Eigen::Vector3d d = T_board_cambody_.linear() * direction;
+  const Eigen::Vector3d oc = o - Eigen::Vector3d(0.0, 0.0, -0.5 * scene_.target.board_thickness);
+  const double along = oc.dot(d);
+  const double rho = cone.radius0 + cone.slope * std::min(oc.norm() + board_bound_radius_, t_limit);
+  const double reach = board_bound_radius_ + rho / std::max(0.05, std::abs(d.z()));
+  if (oc.squaredNorm() - along * along > reach * reach) return false;
+  return detail::near_board_outline(scene_.target, hole_centers_, o, d, cone.radius0, cone.slope, t_limit);
 }
 
 int RayCaster::hole_on_front_plane(const Eigen::Vector3d& origin,

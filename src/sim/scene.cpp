@@ -3,6 +3,8 @@
 #include <l2s/error.hpp>
 #include <l2s/sim/settings.hpp>
 
+#include "sim/scene_elements.hpp"
+
 #include <cmath>
 
 namespace l2s::sim {
@@ -31,14 +33,23 @@ Eigen::Isometry3d BoardPose::T_cambody_board() const {
   return T;
 }
 
+void SceneLayout::validate() const {
+  if (!(camera_height > 0.0)) throw ParamError("scene.camera_height", "must be > 0 m");
+  if (!(wall_gap > 0.5)) throw ParamError("scene.wall_gap", "the wall must stand more than 0.5 m behind the board");
+  if (!(wall_half_width > 0.0)) throw ParamError("scene.wall_half_width", "must be > 0 m");
+  if (!(wall_top > -camera_height)) throw ParamError("scene.wall_top", "must be above the ground");
+  if (!(side_wall_distance == 0.0 || (side_wall_distance >= 0.8 && side_wall_distance <= 20.0)))
+    throw ParamError("scene.side_wall_distance", "must be 0 (none) or 0.8..20 m");
+  if (near_clutter < 0 || near_clutter > 8) throw ParamError("scene.near_clutter", "must be 0..8 boxes");
+  for (const Box& box : extra_clutter)
+    if (!(box.half_size.minCoeff() > 0.0)) throw ParamError("scene.clutter", "box sizes must be > 0");
+}
+
 Scene make_scene(const Target& target, const BoardPose& pose, const SceneLayout& layout) {
   target.validate();
-  if (!(layout.camera_height > 0.0)) throw ParamError("scene.camera_height", "must be > 0 m");
+  layout.validate();
   if (!(layout.wall_gap > target.board_thickness + 0.5))
     throw ParamError("scene.wall_gap", "the wall must stand more than 0.5 m behind the board");
-  if (!(layout.wall_half_width > 0.0)) throw ParamError("scene.wall_half_width", "must be > 0 m");
-  if (!(layout.wall_top > -layout.camera_height))
-    throw ParamError("scene.wall_top", "must be above the ground");
 
   Scene scene;
   scene.target = target;
@@ -64,10 +75,15 @@ Scene make_scene(const Target& target, const BoardPose& pose, const SceneLayout&
         Eigen::Vector3d(pose.x + 2.0, pose.y + 2.7, scene.ground_z + 0.6),
         Eigen::Vector3d(1.0, 0.6, 1.2), -0.3));
   }
-  for (const Box& box : layout.extra_clutter) {
-    if (!(box.half_size.minCoeff() > 0.0)) throw ParamError("scene.clutter", "box sizes must be > 0");
-    scene.clutter.push_back(box);
+  scene.side_wall_distance = layout.side_wall_distance;
+  if (layout.side_wall_distance > 0.0) {
+    detail::fit_clutter_into_corridor(pose, &scene);
+    detail::add_side_walls(layout, pose, &scene);
   }
+  for (const Box& box : layout.extra_clutter) scene.clutter.push_back(box);
+  detail::add_near_clutter(layout.near_clutter, pose, &scene);
+  if (layout.board_stand) detail::add_board_stand(pose, &scene);
+  if (layout.pillar) detail::add_pillar(layout, pose, &scene);
   return scene;
 }
 

@@ -17,10 +17,28 @@ void emit_matrix(YAML::Emitter& out, const char* key, const Eigen::Isometry3d& T
   out << YAML::EndSeq << YAML::EndMap;
 }
 
+/// The quirks as the scene file spells them, and the unit's laser table: per
+/// ring [elevation, azimuth] corrections [rad] and [vertical, horizontal]
+/// beam origin offsets [m] (LidarModel::LaserCorrection).
+void emit_quirks(YAML::Emitter& out, const LidarQuirks& quirks, const LidarModel& lidar) {
+  out << YAML::Key << "lidar_quirks" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "laser_table" << YAML::Value << quirks.laser_table;
+  out << YAML::Key << "beam_footprint" << YAML::Value << quirks.beam_footprint;
+  out << YAML::Key << "return_mode" << YAML::Value << return_mode_name(quirks.return_mode);
+  out << YAML::Key << "table_seed" << YAML::Value << quirks.table_seed;
+  out << YAML::EndMap;
+  if (lidar.corrections.empty()) return;
+  out << YAML::Key << "laser_table" << YAML::Value << YAML::BeginSeq;
+  for (const LidarModel::LaserCorrection& c : lidar.corrections)
+    out << YAML::Flow << YAML::BeginSeq << c.elevation << c.azimuth << c.vertical_offset << c.horizontal_offset
+        << YAML::EndSeq;
+  out << YAML::EndSeq;
+}
+
 }  // namespace
 
 void write_scene_record(const std::string& path, const SimulationConfig& config,
-                        const BoardPose& pose, const Scene& scene,
+                        const BoardPose& pose, const Scene& scene, const LidarModel& lidar,
                         const PlacementReport& placement) {
   YAML::Emitter out;
   out.SetDoublePrecision(10);
@@ -53,7 +71,11 @@ void write_scene_record(const std::string& path, const SimulationConfig& config,
       << YAML::Value << config.layout.wall_gap << YAML::Key << "wall_half_width" << YAML::Value
       << config.layout.wall_half_width << YAML::Key << "wall_top" << YAML::Value
       << config.layout.wall_top << YAML::Key << "clutter_boxes" << YAML::Value
-      << scene.clutter.size() << YAML::EndMap;
+      << scene.clutter.size() << YAML::Key << "board_stand" << YAML::Value << config.layout.board_stand
+      << YAML::Key << "side_wall_distance" << YAML::Value << config.layout.side_wall_distance << YAML::Key
+      << "near_clutter" << YAML::Value << config.layout.near_clutter << YAML::Key << "pillar" << YAML::Value
+      << config.layout.pillar << YAML::EndMap;
+  emit_quirks(out, config.lidar_quirks, lidar);
   emit_matrix(out, "T_cambody_lidar", config.setting.T_cambody_lidar());
   emit_matrix(out, "T_cambody_board", scene.T_cambody_board);
   emit_matrix(out, "T_lidar_camera", config.T_lidar_camera());  // the dataset's camera frame
@@ -63,6 +85,13 @@ void write_scene_record(const std::string& path, const SimulationConfig& config,
   out << YAML::Key << "rings_per_hole" << YAML::Value << YAML::Flow << YAML::BeginSeq
       << placement.rings_per_hole[0] << placement.rings_per_hole[1] << placement.rings_per_hole[2]
       << placement.rings_per_hole[3] << YAML::EndSeq;
+  if (placement.ring_free) {
+    out << YAML::Key << "returns_through_hole" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (int n : placement.returns_through_hole) out << n;
+    out << YAML::EndSeq << YAML::Key << "returns_around_hole" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (int n : placement.returns_around_hole) out << n;
+    out << YAML::EndSeq;
+  }
   out << YAML::Key << "failures" << YAML::Value << YAML::BeginSeq;
   for (const std::string& f : placement.failures) out << f;
   out << YAML::EndSeq << YAML::EndMap;

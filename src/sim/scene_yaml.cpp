@@ -61,6 +61,62 @@ class Reader {
   std::string origin_;
 };
 
+/// The `scene` map: the world around the board and the elements of real recordings.
+void read_scene(const Reader& r, const YAML::Node& scene, SceneLayout* out) {
+  SceneLayout& layout = *out;
+  r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top", "default_clutter",
+                               "clutter", "board_stand", "side_wall_distance", "near_clutter", "pillar"});
+  r.read(scene, "camera_height", "scene", &layout.camera_height);
+  r.read(scene, "wall_gap", "scene", &layout.wall_gap);
+  r.read(scene, "wall_half_width", "scene", &layout.wall_half_width);
+  r.read(scene, "wall_top", "scene", &layout.wall_top);
+  r.read(scene, "default_clutter", "scene", &layout.default_clutter);
+  r.read(scene, "board_stand", "scene", &layout.board_stand);
+  r.read(scene, "side_wall_distance", "scene", &layout.side_wall_distance);
+  r.read(scene, "near_clutter", "scene", &layout.near_clutter);
+  r.read(scene, "pillar", "scene", &layout.pillar);
+  if (const YAML::Node boxes = scene["clutter"]) {
+    if (!boxes.IsSequence()) r.fail("scene.clutter", "must be a list of boxes");
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      const std::string where = "scene.clutter[" + std::to_string(i) + "]";
+      r.only_keys(boxes[i], where, {"center", "size", "yaw"});
+      if (!boxes[i]["center"] || !boxes[i]["size"]) r.fail(where, "needs center and size");
+      double yaw = 0.0;
+      r.read(boxes[i], "yaw", where, &yaw);
+      Box box;
+      box.T_cambody_box.linear() = rotation_zyx(yaw, 0.0, 0.0);
+      box.T_cambody_box.translation() = r.vector3(boxes[i]["center"], where + ".center");
+      box.half_size = 0.5 * r.vector3(boxes[i]["size"], where + ".size");
+      layout.extra_clutter.push_back(box);
+    }
+  }
+}
+
+/// `lidar_quirks: true|false` (all or none), or a map of the single quirks.
+void read_quirks(const Reader& r, const YAML::Node& node, LidarQuirks* quirks) {
+  if (node.IsScalar()) {
+    bool on = false;
+    try {
+      on = node.as<bool>();
+    } catch (const YAML::Exception&) {
+      r.fail("lidar_quirks", "must be true, false or a map");
+    }
+    *quirks = on ? LidarQuirks::all(quirks->table_seed) : LidarQuirks{};
+    return;
+  }
+  r.only_keys(node, "lidar_quirks", {"laser_table", "beam_footprint", "return_mode", "table_seed"});
+  r.read(node, "laser_table", "lidar_quirks", &quirks->laser_table);
+  r.read(node, "beam_footprint", "lidar_quirks", &quirks->beam_footprint);
+  r.read(node, "table_seed", "lidar_quirks", &quirks->table_seed);
+  std::string mode = return_mode_name(quirks->return_mode);
+  r.read(node, "return_mode", "lidar_quirks", &mode);
+  try {
+    quirks->return_mode = return_mode_from_name(mode, "lidar_quirks.return_mode");
+  } catch (const ParamError& e) {
+    r.fail("lidar_quirks.return_mode", e.problem());
+  }
+}
+
 }  // namespace
 
 SimulationConfig parse_simulation_config(const std::string& yaml_text, const std::string& origin) {
@@ -74,7 +130,8 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
   if (!root || root.IsNull()) return config;
   const Reader r(origin);
   r.only_keys(root, "", {"setting", "sensor_pose", "lidar", "frames", "noise_factor", "seed", "target",
-                         "board_pose", "camera", "appearance", "scene", "strict_placement", "threads"});
+                         "board_pose", "camera", "appearance", "scene", "strict_placement", "threads",
+                         "lidar_quirks"});
 
   if (root["setting"] && root["sensor_pose"]) r.fail("sensor_pose", "give either setting or sensor_pose");
   if (root["setting"]) {
@@ -134,33 +191,12 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
   // --- Camera side (scene_yaml_camera.hpp): the rig and the scene's look ---
   if (const YAML::Node camera = root["camera"]) detail::read_camera_block(camera, origin, &config.rig);
   if (const YAML::Node look = root["appearance"]) detail::read_appearance_block(look, origin, &config.appearance);
-  if (const YAML::Node scene = root["scene"]) {
-    r.only_keys(scene, "scene", {"camera_height", "wall_gap", "wall_half_width", "wall_top",
-                                 "default_clutter", "clutter"});
-    SceneLayout& layout = config.layout;
-    r.read(scene, "camera_height", "scene", &layout.camera_height);
-    r.read(scene, "wall_gap", "scene", &layout.wall_gap);
-    r.read(scene, "wall_half_width", "scene", &layout.wall_half_width);
-    r.read(scene, "wall_top", "scene", &layout.wall_top);
-    r.read(scene, "default_clutter", "scene", &layout.default_clutter);
-    if (const YAML::Node boxes = scene["clutter"]) {
-      if (!boxes.IsSequence()) r.fail("scene.clutter", "must be a list of boxes");
-      for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const std::string where = "scene.clutter[" + std::to_string(i) + "]";
-        r.only_keys(boxes[i], where, {"center", "size", "yaw"});
-        if (!boxes[i]["center"] || !boxes[i]["size"]) r.fail(where, "needs center and size");
-        double yaw = 0.0;
-        r.read(boxes[i], "yaw", where, &yaw);
-        Box box;
-        box.T_cambody_box.linear() = rotation_zyx(yaw, 0.0, 0.0);
-        box.T_cambody_box.translation() = r.vector3(boxes[i]["center"], where + ".center");
-        box.half_size = 0.5 * r.vector3(boxes[i]["size"], where + ".size");
-        layout.extra_clutter.push_back(box);
-      }
-    }
-  }
+  // --- Scene geometry and the lidar's quirks ---
+  if (const YAML::Node scene = root["scene"]) read_scene(r, scene, &config.layout);
+  if (const YAML::Node quirks = root["lidar_quirks"]) read_quirks(r, quirks, &config.lidar_quirks);
   try {
     config.validate();
+    config.layout.validate();
   } catch (const ParamError& e) {
     throw FileError(origin, e.what());
   }

@@ -80,18 +80,20 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
   Impl& s = *impl_;
   s.config = std::move(config);
   const SimulationConfig& c = s.config;
-  s.model = LidarModel::by_name(c.lidar);
+  s.model = with_quirks(LidarModel::by_name(c.lidar), c.lidar_quirks);
 
   if (c.board_pose) {
     s.pose = *c.board_pose;
   } else {
     // One pose for all three models, so a setting's scene does not depend on
     // the lidar; only if none exists, a pose for the configured model alone.
-    PlacementSearch search;
+    // A ring-free lidar or one with its own laser table joins the three.
+    PlacementSearch search = c.placement_search.value_or(PlacementSearch{});
     search.threads = c.threads;
-    PlacementResult found = find_placement(
-        c.target, c.setting, {LidarModel::vlp16(), LidarModel::hdl32(), LidarModel::hdl64()}, c.rig,
-        c.layout, search);
+    std::vector<LidarModel> joint{LidarModel::vlp16(), LidarModel::hdl32(), LidarModel::hdl64()};
+    if (!s.model.has_rings() || !s.model.corrections.empty()) joint.push_back(s.model);
+    PlacementResult found;
+    if (!c.placement_search) found = find_placement(c.target, c.setting, joint, c.rig, c.layout, search);
     if (!found.found) found = find_placement(c.target, c.setting, {s.model}, c.rig, c.layout, search);
     s.pose = found.pose;
   }
@@ -114,6 +116,8 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
   lidar_params.noise_factor = c.noise_factor;
   lidar_params.seed = detail::hash_counters(c.seed, kLidarStream);
   lidar_params.threads = c.threads;
+  lidar_params.beam_footprint = c.lidar_quirks.beam_footprint;
+  lidar_params.return_mode = c.lidar_quirks.return_mode;
   s.lidar = std::make_unique<LidarSimulator>(s.model, lidar_params);
   s.clean = s.renderer->render(*s.caster);
 }
@@ -145,7 +149,7 @@ void DatasetSimulator::write(const std::string& folder, const ProgressCallback& 
   const Impl& s = *impl_;
   const io::DatasetWriter writer(folder, cameras(), s.config.target);
   writer.write_ground_truth(T_lidar_camera());
-  detail::write_scene_record(folder + "/scene.yaml", s.config, s.pose, s.scene, s.placement);
+  detail::write_scene_record(folder + "/scene.yaml", s.config, s.pose, s.scene, s.model, s.placement);
   // Frames are independent (each draws its own noise), so workers take them
   // in any order: PNG encoding dominates and would leave a core idle otherwise.
   // Progress is reported in completion count order from under a lock.

@@ -44,6 +44,9 @@ constexpr Material kBoard{0.80, 0.22, 0.05, 3};
 constexpr Material kWall{0.32, 0.45, 0.40, 5};
 constexpr Material kGround{0.28, 0.40, 0.30, 4};
 constexpr Material kClutter{0.50, 0.40, 0.20, 4};
+constexpr Material kStand{0.15, 0.20, 0.10, 2};
+constexpr Material kSideWall{0.40, 0.40, 0.40, 5};
+constexpr Material kPillar{0.55, 0.30, 0.30, 4};
 
 }  // namespace
 
@@ -88,6 +91,9 @@ double albedo(const Hit& hit, std::uint64_t seed) {
     case SurfaceId::Wall: material = &kWall; break;
     case SurfaceId::Ground: material = &kGround; break;
     case SurfaceId::Clutter: material = &kClutter; break;
+    case SurfaceId::Stand: material = &kStand; break;
+    case SurfaceId::SideWall: material = &kSideWall; break;
+    case SurfaceId::Pillar: material = &kPillar; break;
     case SurfaceId::None: return 0.9;
   }
   // Each surface and face draws its own noise field.

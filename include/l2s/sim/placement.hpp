@@ -2,8 +2,10 @@
 // Checks that a board placement gives the calibrator what it needs (paper,
 // Sec. III): the whole board and its four holes inside both images, the board
 // roughly vertical for both sensors, and every hole crossed by at least two
-// lidar rings with rays through the hole and board returns on both sides.
-// Also finds such a placement by a deterministic grid search.
+// lidar rings with rays through the hole and board returns on both sides. A
+// ring-free (rosette) lidar instead needs enough returns through each hole
+// and on the board around its rim within the accumulation time. Also finds
+// such a placement by a deterministic grid search.
 
 #include <l2s/sim/lidar_model.hpp>
 #include <l2s/sim/scene.hpp>
@@ -22,8 +24,9 @@ struct RingCrossing {
   int ring = 0;
   int rays_through = 0;     ///< rays guaranteed to pass the hole and hit the wall
   bool board_both_sides = false;  ///< board returns guaranteed left and right of the hole
-  bool background_is_wall = true; ///< every ray through the hole hits the wall
-  bool counts() const { return rays_through >= 2 && board_both_sides && background_is_wall; }
+  bool background_is_wall = true; ///< every ray through the hole hits the wall (or another surface well behind)
+  bool occluded = false;          ///< something in front of the board cuts the ring near the hole
+  bool counts() const { return rays_through >= 2 && board_both_sides && background_is_wall && !occluded; }
 };
 
 struct PlacementRequirements {
@@ -31,6 +34,10 @@ struct PlacementRequirements {
   int min_rings_per_hole = 2;
   double max_normal_elevation = 0.4;    ///< [rad] board normal from horizontal, each sensor
   double max_incidence = 1.2;           ///< [rad] board normal to the line of sight, each sensor
+  // Ring-free (rosette) lidars: the calibrator accumulates the frames of a static board.
+  double accumulation_time = 2.0;       ///< [s] of frames accumulated, > 0
+  int min_returns_through_hole = 30;    ///< returns through each hole onto a surface >= 0.3 m behind it
+  int min_returns_around_hole = 60;     ///< board returns within 4 cm outside each hole's rim
 };
 
 /// The verdict for one scene, lidar model and setting.
@@ -38,8 +45,11 @@ struct PlacementReport {
   bool ok = false;
   std::vector<std::string> failures;     ///< one readable line per failed condition
   double image_margin = 0.0;             ///< [px] smallest, over both images
-  std::array<int, 4> rings_per_hole{};   ///< rings that count, per hole
+  std::array<int, 4> rings_per_hole{};   ///< rings that count, per hole (spinning lidars)
   int min_rays_second_ring = 0;          ///< over holes: rays of the 2nd-best ring
+  bool ring_free = false;                ///< the lidar has no rings: the counts below apply
+  std::array<int, 4> returns_through_hole{};  ///< ring-free: within accumulation_time
+  std::array<int, 4> returns_around_hole{};   ///< ring-free: board returns around the rim
   double normal_elevation_camera = 0.0;  ///< [rad]
   double normal_elevation_lidar = 0.0;   ///< [rad]
   std::vector<RingCrossing> crossings;   ///< every ring that reaches a hole

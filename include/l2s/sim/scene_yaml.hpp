@@ -4,7 +4,9 @@
 //
 //   setting: 3                 # Table I index, or a custom pose:
 //   sensor_pose: {tx: -0.3, ty: 0.2, tz: -0.2, yaw: 0.3, pitch: -0.1, roll: 0.2}
-//   lidar: hdl64               # vlp16 | hdl32 | hdl64
+//   lidar: hdl64               # vlp16 | hdl32 | hdl64 | avia | mid360
+//   lidar_quirks: true         # all on, or each of them:
+//   # lidar_quirks: {laser_table: true, beam_footprint: true, return_mode: strongest, table_seed: 3}
 //   frames: 30
 //   noise_factor: 1.0
 //   seed: 7
@@ -25,6 +27,10 @@
 //     default_clutter: true
 //     clutter:                 # extra boxes, camera body frame
 //       - {center: [5.0, -2.5, -1.0], size: [1.0, 1.0, 1.0], yaw: 0.3}
+//     board_stand: true        # post and base under the board
+//     side_wall_distance: 1.5  # corridor walls at y = +-1.5 m (0 = none)
+//     near_clutter: 2          # low boxes between the sensors and the board
+//     pillar: true
 //   strict_placement: true
 //   threads: 0
 

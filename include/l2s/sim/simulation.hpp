@@ -4,6 +4,7 @@
 
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/lidar_model.hpp>
+#include <l2s/sim/lidar_quirks.hpp>
 #include <l2s/sim/placement.hpp>
 #include <l2s/sim/scene.hpp>
 #include <l2s/sim/settings.hpp>
@@ -27,7 +28,7 @@ namespace l2s::sim {
 struct SimulationConfig {
   int setting_index = 1;         ///< 1..9 for Table I, 0 for a custom `setting`
   SensorSetting setting = {-0.8, -0.1, 0.4, 0.0, 0.0, 0.0};  ///< lidar pose in camera body
-  std::string lidar = "vlp16";   ///< vlp16 | hdl32 | hdl64
+  std::string lidar = "vlp16";   ///< vlp16 | hdl32 | hdl64 | avia | mid360 (LidarModel::by_name)
   int frames = 30;               ///< >= 1
   double noise_factor = 1.0;     ///< K, >= 0: sigma = K * 0.008 m (lidar), K * 0.007 (image)
   std::uint64_t seed = 1;        ///< S
@@ -47,6 +48,12 @@ struct SimulationConfig {
   /// the rectified left frame.
   Eigen::Isometry3d T_lidar_camera() const;
 
+  // The lidar side of real recordings; all off = the paper's ideal lidar.
+  LidarQuirks lidar_quirks;      ///< per-laser table, beam footprint, return mode
+  /// The grid the auto-placement searches for the configured lidar alone;
+  /// empty: the default grid, one pose for all three spinning models.
+  std::optional<PlacementSearch> placement_search;
+
   /// Table I setting `index` (1..9) with the given lidar model; throws ParamError.
   static SimulationConfig paper(int index, const std::string& lidar = "vlp16");
 
@@ -56,7 +63,7 @@ struct SimulationConfig {
 
 /// One frame in memory, as the dataset folder will hold it.
 struct SimulatedFrame {
-  LidarCloud lidar;  ///< lidar frame, with ring and intensity
+  LidarCloud lidar;  ///< lidar frame, with intensity and ring (no ring for ring-free lidars)
   Image left;        ///< 8-bit gray (BGR for a colour appearance); raw images when rig.images() is Raw
   Image right;
 };

@@ -43,6 +43,9 @@ struct SimulateOptions {
   std::string board_texture = "matte";
   std::string background = "textured";
   bool shadows = false;
+
+  // --- Lidar side ---
+  bool lidar_quirks = false;
 };
 
 /// Applies the rig and look options that were given on the command line.
@@ -110,6 +113,7 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   if (given("--threads")) config.threads = options.threads;
   if (options.lenient) config.strict_placement = false;
   apply_camera_options(options, command, &config);
+  if (options.lidar_quirks) config.lidar_quirks = sim::LidarQuirks::all(config.lidar_quirks.table_seed);
 
   prepare_output(options.out_dir, options.overwrite);
   const sim::DatasetSimulator simulator(config);
@@ -120,9 +124,9 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   progress.finish();
 
   const Eigen::Vector3d t = simulator.T_lidar_camera().translation();
-  std::printf("wrote %s: %d frames, %s, setting %d, K = %g, seed %llu\n", options.out_dir.c_str(),
-              config.frames, config.lidar.c_str(), config.setting_index, config.noise_factor,
-              static_cast<unsigned long long>(config.seed));
+  std::printf("wrote %s: %d frames, %s%s, setting %d, K = %g, seed %llu\n", options.out_dir.c_str(),
+              config.frames, config.lidar.c_str(), config.lidar_quirks.any() ? " with quirks" : "",
+              config.setting_index, config.noise_factor, static_cast<unsigned long long>(config.seed));
   std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
   std::printf("cameras %dx%d, %s images\n", config.rig.width, config.rig.height,
               config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
@@ -137,8 +141,8 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
   command->add_option("out_dir", options->out_dir, "output dataset folder")->required();
   command->add_option("--setting", options->setting, "Table I setting of the paper")
       ->check(CLI::Range(1, 9));
-  command->add_option("--lidar", options->lidar, "lidar model")
-      ->check(CLI::IsMember({"vlp16", "hdl32", "hdl64"}));
+  command->add_option("--lidar", options->lidar, "lidar model (avia, mid360: ring-free rosette scans)")
+      ->check(CLI::IsMember(sim::LidarModel::names()));
   command->add_option("--frames", options->frames, "number of frames")->check(CLI::Range(1, 100000));
   command->add_option("--noise", options->noise, "noise factor K (sigma = K * 8 mm, K * 0.007)")
       ->check(CLI::Range(0.0, 100.0));
@@ -153,6 +157,8 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
   command->add_flag("--lenient", options->lenient, "warn instead of failing when the placement check fails");
   command->add_flag("--overwrite", options->overwrite, "replace an existing dataset in out_dir");
   add_camera_options(command, options.get());
+  command->add_flag("--lidar-quirks", options->lidar_quirks,
+                    "simulate a real lidar: per-laser calibration table, beam divergence and mixed returns");
   command->callback([&runner, options, command] {
     runner = [options, command] { return run_simulate(*options, *command); };
   });
