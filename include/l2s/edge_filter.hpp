@@ -47,6 +47,7 @@ class EdgeFilter {
     bool found = false;        ///< some edge points survived
     std::string reason;        ///< why not, when !found
     StereoCloud edges;         ///< [m] camera frame: edge points (on the plane) minus border lines, with pixels
+    std::vector<Eigen::Vector3d> gradients;  ///< one per edge point: unit in-plane direction of the image gradient (camera frame)
     std::size_t input_points = 0;   ///< board-plane points given
     std::size_t edge_points = 0;    ///< image edge pixels in the board's region, cast onto the plane
     double sobel_threshold = 0.0;   ///< the threshold used (tau_sobel or the adaptive one)

@@ -127,7 +127,8 @@ class CameraHypothesisTester {
         EdgeFilter(f_.params.edges).filter(f_.left, f_.cameras.left, attempt.board, attempt.plane, f_.target);
     if (!attempt.edges.found) return stop(hypothesis, "edges", attempt.edges.reason);
     attempt.circles = CircleFinder(f_.params.camera_circles)
-                          .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target);
+                          .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target,
+                                attempt.edges.gradients);
     if (!attempt.circles.found) return stop(hypothesis, "circles", attempt.circles.reason);
     return true;
   }

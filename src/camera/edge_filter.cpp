@@ -28,9 +28,16 @@
 namespace l2s {
 namespace {
 
-/// Sobel magnitude image of a gray crop, scaled to 0..255 as EdgeFilter::Magnitude says.
-cv::Mat sobel_magnitude(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
+/// Sobel responses of a gray crop and their magnitude, scaled to 0..255 as EdgeFilter::Magnitude says.
+struct Sobel {
   cv::Mat gx, gy, magnitude;
+};
+
+Sobel sobel_of(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
+  Sobel out;
+  cv::Mat& gx = out.gx;
+  cv::Mat& gy = out.gy;
+  cv::Mat& magnitude = out.magnitude;
   cv::Sobel(gray, gx, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(gray, gy, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
   if (kind == EdgeFilter::Magnitude::HalfL1) {
@@ -40,11 +47,23 @@ cv::Mat sobel_magnitude(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
     cv::magnitude(gx, gy, magnitude);
     magnitude = cv::min(magnitude, 255.0f);
   }
-  return magnitude;
+  return out;
+}
+
+/// Where pixel (x, y) looks on the plane, or nothing when the ray misses it.
+bool cast_onto(const CameraInfo& camera, const Plane& plane, double x, double y, Eigen::Vector3d& out) {
+  const Eigen::Vector3d ray((x - camera.cx()) / camera.fx(), (y - camera.cy()) / camera.fy(), 1.0);
+  const double denom = plane.normal().dot(ray);
+  if (std::abs(denom) < 1e-9) return false;
+  const double t = -plane.offset() / denom;
+  if (t <= 0.0) return false;
+  out = t * ray;
+  return true;
 }
 
 struct EdgePixels {
-  std::vector<Eigen::Vector3d> points;  // on the plane, camera frame
+  std::vector<Eigen::Vector3d> points;     // on the plane, camera frame
+  std::vector<Eigen::Vector3d> gradients;  // unit, in the plane: where the image gradient points
   std::vector<Eigen::Vector2i> pixels;
   double threshold = 0.0;
 };
@@ -66,7 +85,8 @@ EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const Ster
   const cv::Rect box = cv::boundingRect(mask);
   if (box.area() <= 0) return out;
   const cv::Rect padded = (box + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, gray.cols, gray.rows);
-  const cv::Mat magnitude = sobel_magnitude(gray(padded), params.magnitude);
+  const Sobel sobel = sobel_of(gray(padded), params.magnitude);
+  const cv::Mat& magnitude = sobel.magnitude;
   std::vector<float> values;
   for (int y = box.y; y < box.y + box.height; ++y)
     for (int x = box.x; x < box.x + box.width; ++x)
@@ -82,12 +102,13 @@ EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const Ster
   for (int y = box.y; y < box.y + box.height; ++y)
     for (int x = box.x; x < box.x + box.width; ++x) {
       if (!mask.at<std::uint8_t>(y, x) || magnitude.at<float>(y - padded.y, x - padded.x) < out.threshold) continue;
-      const Eigen::Vector3d ray((x - camera.cx()) / camera.fx(), (y - camera.cy()) / camera.fy(), 1.0);
-      const double denom = plane.normal().dot(ray);
-      if (std::abs(denom) < 1e-9) continue;
-      const double t = -plane.offset() / denom;
-      if (t <= 0.0) continue;
-      out.points.push_back(t * ray);
+      // The gradient's direction on the plane: where a step along it in the image lands.
+      Eigen::Vector2d g(sobel.gx.at<float>(y - padded.y, x - padded.x), sobel.gy.at<float>(y - padded.y, x - padded.x));
+      g.normalize();
+      Eigen::Vector3d p, step;
+      if (!cast_onto(camera, plane, x, y, p) || !cast_onto(camera, plane, x + g.x(), y + g.y(), step)) continue;
+      out.points.push_back(p);
+      out.gradients.push_back((step - p).normalized());
       out.pixels.emplace_back(x, y);
     }
   return out;
@@ -240,6 +261,7 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camer
     if (removed[k]) continue;
     result.edges.points.push_back(points[kept[k]]);
     result.edges.pixels.push_back(found.pixels[kept[k]]);
+    result.gradients.push_back(found.gradients[kept[k]]);
   }
   result.found = !result.edges.points.empty();
   if (!result.found)
