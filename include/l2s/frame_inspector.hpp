@@ -16,12 +16,14 @@ namespace l2s {
 struct LidarInspection {
   BranchReport report;  ///< what Calibrator::add reports for this sweep
   std::optional<PassThroughFilter::Result> pass_through;  ///< indices into the input sweep
-  LidarCloud cloud;  ///< the sweep after pass-through, rings filled: what the later stages index
+  bool ring_free = false;  ///< no ring structure: hole edges from the board's occupancy, not ring discontinuities
+  LidarCloud cloud;  ///< the sweep after pass-through, rings filled (ring-free: none): what the later stages index
   std::optional<PlaneSegmenter::Result> plane;  ///< every candidate; inliers index `cloud`
   std::vector<BoardHypothesis> hypotheses;       ///< board-sized planes tried, in order, and their fate
   /// The stages run on the chosen hypothesis (or, when none was chosen, on the
   /// first one tried: the most board-like plane).
-  std::optional<DiscontinuityFilter::Result> discontinuities;  ///< sources index `cloud`
+  std::optional<DiscontinuityFilter::Result> discontinuities;  ///< ring lidars; sources index `cloud`
+  std::optional<OccupancyEdgeFilter::Result> occupancy;        ///< ring-free clouds
   std::optional<CircleFinder::Result> circles;
   /// The plane candidate those stages ran on (index into plane->candidates), -1 when none.
   int candidate = -1;
@@ -53,6 +55,11 @@ struct CameraInspection {
 /// Runs the lidar branch on one sweep and keeps every stage's result.
 /// Throws ParamError for invalid params or target (as the Calibrator does).
 LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
+                              const Calibrator::Params& params);
+
+/// As above for a ring-free lidar: the sweeps (of a static board) are
+/// accumulated into one cloud, as the Calibrator does for ring_free_frames sweeps.
+LidarInspection inspect_lidar(const std::vector<LidarCloud>& sweeps, const Target& target,
                               const Calibrator::Params& params);
 
 /// Runs the camera branch on one rectified pair and keeps every stage's result.

@@ -11,10 +11,21 @@
 
 namespace l2s::detail {
 
-/// Lidar: rings, pass-through, board plane, depth discontinuities, circles.
+/// Lidar: rings, pass-through, board plane, hole edges, circles. Hole edges
+/// come from depth discontinuities along the rings, or, for a ring-free cloud
+/// (a non-repetitive scan, accumulated), from the board's occupancy.
 /// `trace`, when given, receives every stage's result (its report is not set).
 BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params, LidarInspection* trace = nullptr);
+
+/// Does this sweep lack a usable ring structure (no ring field, and none to
+/// recover from its elevations)? Such sweeps are accumulated, then detected
+/// as one ring-free cloud.
+bool is_ring_free(const LidarCloud& sweep);
+
+/// The sweeps of a static board as one ring-free cloud: each sweep's points
+/// inside the lidar pass-through (ring and intensity dropped).
+LidarCloud accumulate_ring_free(const std::vector<const LidarCloud*>& sweeps, const Calibrator::Params& params);
 
 /// Camera: SGM stereo, pass-through, board plane, Sobel edges, circles, and
 /// (default preset) the board pose fitted to the hole rims in both images.

@@ -32,6 +32,30 @@ struct Calibrator::Impl {
   CenterAccumulator lidar_centers;
   CenterAccumulator camera_centers;
   std::vector<FrameReport> frames;
+  std::vector<LidarCloud> ring_free_window;  // ring-free sweeps waiting for a detection (pass-through applied)
+
+  // The lidar branch of one sweep: at once for a ring lidar; for a ring-free
+  // one, when ring_free_frames sweeps of the static board are together.
+  BranchReport lidar_branch(const LidarCloud& sweep) {
+    if (!detail::is_ring_free(sweep))
+      return timed([&] { return detail::run_lidar_branch(sweep, target, params); });
+    const auto start = std::chrono::steady_clock::now();
+    ring_free_window.push_back(detail::accumulate_ring_free({&sweep}, params));
+    BranchReport report;
+    const auto count = static_cast<int>(ring_free_window.size());
+    if (count < params.ring_free_frames) {
+      report.failed_stage = "accumulating";
+      report.reason = "ring-free sweep " + std::to_string(count) + " of " + std::to_string(params.ring_free_frames) +
+                      " accumulated";
+    } else {
+      std::vector<const LidarCloud*> window;
+      for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
+      report = detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
+      ring_free_window.clear();
+    }
+    report.milliseconds = milliseconds_since(start);
+    return report;
+  }
 
   // Names the frame, accumulates what its branches found, keeps its report.
   FrameReport record(FrameReport report, const std::string& id) {
@@ -63,10 +87,8 @@ Calibrator& Calibrator::operator=(Calibrator&&) noexcept = default;
 FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Image& right,
                             const std::string& id) {
   const auto start = std::chrono::steady_clock::now();
-  const Impl& impl = *impl_;
-  const auto lidar_branch = [&] {
-    return timed([&] { return detail::run_lidar_branch(lidar, impl.target, impl.params); });
-  };
+  Impl& impl = *impl_;
+  const auto lidar_branch = [&] { return impl.lidar_branch(lidar); };
   const auto camera_branch = [&] {
     return timed([&] {
       return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params);
@@ -94,7 +116,7 @@ BranchReport Calibrator::camera_branch(const Image& left, const Image& right) co
 
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
-  report.lidar = timed([&] { return detail::run_lidar_branch(lidar, impl_->target, impl_->params); });
+  report.lidar = impl_->lidar_branch(lidar);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
   return impl_->record(std::move(report), id);
@@ -152,6 +174,7 @@ void Calibrator::reset() {
   impl_->lidar_centers.reset();
   impl_->camera_centers.reset();
   impl_->frames.clear();
+  impl_->ring_free_window.clear();
 }
 
 const Calibrator::Params& Calibrator::params() const { return impl_->params; }

@@ -51,6 +51,15 @@ void visit(V& v, DiscontinuityFilter::Params& p) {
 }
 
 template <class V>
+void visit(V& v, OccupancyEdgeFilter::Params& p) {
+  v.field("cell_factor", p.cell_factor);
+  v.field("min_cell", p.min_cell);
+  v.field("max_cell", p.max_cell);
+  v.field("min_hole_depth", p.min_hole_depth);
+  v.field("rim_sectors", p.rim_sectors);
+}
+
+template <class V>
 void visit(V& v, CircleFinder::Params& p) {
   v.field("inlier_threshold", p.inlier_threshold);
   v.field("min_circle_points", p.min_circle_points);
@@ -73,6 +82,7 @@ void visit(V& v, BoardVerifier::Params& p) {
   v.field("min_samples", p.min_samples);
   v.field("min_hole_open", p.min_hole_open);
   v.field("min_outline_open", p.min_outline_open);
+  v.field("min_rim_support", p.min_rim_support);
   v.field("confident_score", p.confident_score);
   v.field("max_hypotheses", p.max_hypotheses);
 }
@@ -164,6 +174,8 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("lidar_pass_through", [&](V& s) { visit(s, p.lidar_pass_through); });
   v.section("lidar_plane", [&](V& s) { visit(s, p.lidar_plane); });
   v.section("discontinuity", [&](V& s) { visit(s, p.discontinuity); });
+  v.section("occupancy", [&](V& s) { visit(s, p.occupancy); });
+  v.field("ring_free_frames", p.ring_free_frames);
   v.section("lidar_circles", [&](V& s) { visit(s, p.lidar_circles); });
   v.section("lidar_verifier", [&](V& s) { visit(s, p.lidar_verifier); });
   v.section("stereo", [&](V& s) { visit(s, p.stereo); });
