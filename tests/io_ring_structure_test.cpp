@@ -4,6 +4,7 @@
 // returns and returns spread between the rings are doubtful.
 #include <l2s/io/ring_recovery.hpp>
 
+#include "io/ring_report.hpp"
 #include "support/laser_sweep.hpp"
 
 #include <gtest/gtest.h>
@@ -138,20 +139,36 @@ TEST(ScanStructure, ReturnsSpreadBetweenRingsAreDoubtful) {
   EXPECT_GT(report.contrast, 2.0);
 }
 
-// Two lasers 0.3 deg apart whose returns spread 0.09 deg: two rings, but
-// they overlap.
-TEST(ScanStructure, OverlappingRingsAreDoubtful) {
+// Two lasers 0.3 deg apart whose returns spread 0.08 deg: two rings, with far
+// more returns near the middle between them than other rings have.
+TEST(ScanStructure, MeasuresHowCloseRingsCrowdEachOther) {
   std::mt19937 rng(8);
-  std::normal_distribution<double> jitter(0.0, 0.09 * kDeg);
+  std::normal_distribution<double> jitter(0.0, 0.08 * kDeg);
   std::uniform_real_distribution<double> azimuth(-M_PI, M_PI), range(2.0, 30.0);
   LidarCloud cloud;
   for (double elevation : {-10.0, -5.0, 0.0, 0.3, 5.0, 10.0})
     for (int i = 0; i < 1000; ++i)
       cloud.points.push_back(range(rng) * direction(azimuth(rng), elevation * kDeg + jitter(rng)));
   const RingRecoveryReport report = recover_ring_structure(cloud);
-  EXPECT_EQ(report.rings, 6) << report.summary();
-  EXPECT_TRUE(report.doubtful) << report.summary();
-  EXPECT_NE(report.doubt.find("overlaps a neighbour"), std::string::npos) << report.doubt;
+  ASSERT_EQ(report.lasers.size(), 6u) << report.summary();
+  for (int k : {2, 3}) EXPECT_LT(report.lasers[k].contrast, 10.0) << k;
+  for (int k : {0, 1, 4, 5}) EXPECT_GT(report.lasers[k].contrast, 100.0) << k;
+}
+
+// The doubt itself: a ring with as many returns next to the middle to its
+// neighbour as on itself overlaps it.
+TEST(ScanStructure, OverlappingRingsAreDoubtful) {
+  RingRecoveryReport report;
+  for (int k = 0; k < 8; ++k)
+    report.lasers.push_back({k, (-10.0 + 2.0 * k) * kDeg, 0.0, 0.02 * kDeg, 500, k == 5 ? 2.5 : 80.0});
+  report.rings = 8;
+  report.points = 4000;
+  report.contrast = 60.0;
+  finish_report(report);
+  EXPECT_EQ(report.structure, ScanStructure::Rings);
+  EXPECT_TRUE(report.doubtful);
+  EXPECT_NE(report.doubt.find("ring 5 overlaps a neighbour (contrast 2.5"), std::string::npos)
+      << report.doubt;
 }
 
 TEST(ScanStructure, SummaryNamesSourceRingsAndDoubts) {

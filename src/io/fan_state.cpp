@@ -88,7 +88,7 @@ double typical_noise(const std::vector<Fitted>& lines, const FanParams& params) 
 
 Decision classify(const std::vector<Fitted>& lines, const Match& nearest, const Point& p,
                   const FanParams& params) {
-  constexpr int kReach = 3;          // lines either side of the nearest that are asked too
+  constexpr int kReach = 2;          // lines either side of the nearest that are asked too
   constexpr double kClearWin = 3.0;  // a winner this many times more likely (in sigmas)
   if (nearest.line < 0) return {};
   const int first = std::max(0, nearest.line - kReach);

@@ -87,7 +87,7 @@ Fan fit_fan(const std::vector<Point>& all, const FanParams& params) {
     pending = add_new_lines(points, outliers, lines, fan.profile, params, params.new_line_range);
     pending.insert(pending.end(), uncertain.begin(), uncertain.end());
   }
-  for (int round = 0; round < 3; ++round) {
+  for (int round = 0; round < 2; ++round) {
     refit_all(lines, fan.profile, params);
     while (merge_lines(lines, fan.profile, params) > 0) {
     }
