@@ -79,7 +79,7 @@ Fan fit_fan(const std::vector<Point>& all, const FanParams& params) {
   std::vector<Fitted> lines;
   std::vector<std::size_t> pending;  // returns no line took yet, too few for a line of their own
   for (const auto& chunk : chunks_by_distance(points)) {
-    ++fan.iterations;
+    ++fan.chunks;
     std::vector<std::size_t> candidates = pending, outliers, uncertain;
     candidates.insert(candidates.end(), chunk.begin(), chunk.end());
     extend_lines(points, candidates, lines, fan.profile, params, outliers, uncertain);

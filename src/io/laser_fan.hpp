@@ -3,14 +3,17 @@
 // laser_line.hpp), to returns whose laser is unknown. Far returns fix the
 // elevations, near ones the offsets, so the fit grows from far to near:
 //  1. an offset profile h(t) from histogram sharpness (offset_profile.hpp);
-//  2. first lasers from the far half of the returns, clustered by intercept;
-//  3. then, until nothing changes: give each return to the laser whose line
-//     predicts it within `gate` sigmas (a return whose prediction is still too
-//     uncertain against the spacing of the lines waits for a later round);
-//     refit each line (ridge least squares, prior h from the profile); returns
-//     that no confident line explains become new lasers when they cluster;
-//     adjacent lines that one line explains as well (BIC) merge; a line whose
-//     residuals fall apart in two clumps splits.
+//  2. returns in chunks of distance, far first (a chunk is narrow enough in
+//     u for the lines fitted so far to predict it): a return joins the one
+//     line that explains it within `gate` sigmas of its prediction (the
+//     prediction's own uncertainty included); returns several lines could
+//     explain wait for a later chunk; returns no line explains group by
+//     intercept into new lasers (fan_grouping.hpp), with a prior on h from the
+//     established neighbours (fan_state.hpp); a line grown much wider than a
+//     laser is split again;
+//  3. tidying (fan_cleanup.hpp): refit under the finished prior, merge
+//     duplicates, dissolve strays and lines that cross, reassign all returns.
+// assign_all then gives every return of the sweep its nearest line.
 
 #include "io/laser_line.hpp"
 #include "io/line_index.hpp"
@@ -30,7 +33,6 @@ struct FanParams {
   double gate = 4.0;                    ///< sigmas within which a return belongs to a line
   double new_line_range = 0.5;          ///< [m] nearer returns never start a laser of their own
   double crossing_range = 2.0;          ///< [m] two lasers' lines never cross beyond this
-  int max_iterations = 12;
   std::size_t max_points = 16000;       ///< returns used for the fit (every k-th)
   ProfileParams profile;
 };
@@ -39,14 +41,15 @@ struct FanParams {
 struct Fan {
   std::vector<Line> lines;
   OffsetProfile profile;
-  int iterations = 0;
+  int chunks = 0;  ///< distance chunks the fit grew through
 };
 
 Fan fit_fan(const std::vector<Point>& points, const FanParams& params);
 
-/// Gives every point its nearest line, then refits, adds lines for clusters of
-/// confident outliers (lasers too sparse for the fit's sample) and assigns
-/// again. Returns each point's line (-1 when there are no lines).
+/// Gives every return its nearest line; returns that no line explains, when
+/// they group (a laser too sparse to show in the fit's sample), become lines
+/// and every return is assigned again. Returns each return's line (-1 when
+/// there are no lines).
 std::vector<int> assign_all(const std::vector<Point>& points, Fan& fan, const FanParams& params);
 
 }  // namespace l2s::io::fan
