@@ -32,7 +32,8 @@ class LineIndex {
 
   std::vector<double> t_, h_;
   // Lookup table: for u-bins of width kBinU, the nearest line at the bin's
-  // centre for v-cells of width kCellV from cell_v0_[bin] on.
+  // centre for v-cells of width cell_v_ from cell_v0_[bin] on.
+  double cell_v_ = 0.0;
   std::vector<double> cell_v0_;
   std::vector<std::uint32_t> cell_begin_;  // first cell of each bin in cells_
   std::vector<std::uint16_t> cells_;
