@@ -39,7 +39,8 @@ TEST(DatasetYaml, ErrorsNameTheFileAndTheKey) {
   test::write_text(path, "images: raw\nversion: 2\n");
   EXPECT_FILE_ERROR(read_dataset_info(path), path, "unknown key 'version'");
   test::write_text(path, "images: distorted\n");
-  EXPECT_FILE_ERROR(read_dataset_info(path), path, "images: 'distorted' is neither rectified nor raw");
+  EXPECT_FILE_ERROR(read_dataset_info(path), path,
+                    "images: 'distorted' is neither rectified nor raw");
   test::write_text(path, "images: Raw\n");
   EXPECT_FILE_ERROR(read_dataset_info(path), path, "images: 'Raw'");
   test::write_text(path, "images: [raw]\n");

@@ -208,9 +208,9 @@ RingPurity purity(const LidarCloud& cloud, const std::vector<int>& truth, double
   RingPurity result;
   for (const auto& [ring, lasers] : votes)
     result.laser_of_ring[ring] =
-        std::max_element(lasers.begin(), lasers.end(),
-                         [](const auto& a, const auto& b) { return a.second < b.second; })
-            ->first;
+        std::max_element(lasers.begin(), lasers.end(), [](const auto& a, const auto& b) {
+          return a.second < b.second;
+        })->first;
   for (std::size_t i = 0; i < truth.size(); ++i) {
     const Eigen::Vector3d& p = cloud.points[i];
     if (truth[i] < 0 || std::hypot(p.x(), p.y()) < min_distance) continue;

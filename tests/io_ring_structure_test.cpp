@@ -160,7 +160,8 @@ TEST(ScanStructure, MeasuresHowCloseRingsCrowdEachOther) {
 TEST(ScanStructure, OverlappingRingsAreDoubtful) {
   RingRecoveryReport report;
   for (int k = 0; k < 8; ++k)
-    report.lasers.push_back({k, (-10.0 + 2.0 * k) * kDeg, 0.0, 0.02 * kDeg, 500, k == 5 ? 2.5 : 80.0});
+    report.lasers.push_back(
+        {k, (-10.0 + 2.0 * k) * kDeg, 0.0, 0.02 * kDeg, 500, k == 5 ? 2.5 : 80.0});
   report.rings = 8;
   report.points = 4000;
   report.contrast = 60.0;

@@ -88,7 +88,8 @@ Eigen::Vector2d centroid(const Image& image, const Eigen::Vector2d& guess) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   double weight = 0.0;
   for (int y = static_cast<int>(std::lround(guess.y())) - 5; y <= std::lround(guess.y()) + 5; ++y)
-    for (int x = static_cast<int>(std::lround(guess.x())) - 5; x <= std::lround(guess.x()) + 5; ++x) {
+    for (int x = static_cast<int>(std::lround(guess.x())) - 5; x <= std::lround(guess.x()) + 5;
+         ++x) {
       const double w = std::max(0.0, image.at(x, y) - 20.0);
       sum += w * Eigen::Vector2d(x, y);
       weight += w;
@@ -221,7 +222,8 @@ TEST(StereoRectifier, TriangulatedPointsReturnToTheCameraFrame) {
       const Eigen::Vector2d r = rectifier.right().rectify_point(right_px[i]);
       EXPECT_NEAR(l.y(), r.y(), 1e-6) << model << " " << i;  // rows line up
       const double z = f * B / (l.x() - r.x());
-      const Eigen::Vector3d p_rect((l.x() - raw.left.cx()) * z / f, (l.y() - raw.left.cy()) * z / f, z);
+      const Eigen::Vector3d p_rect((l.x() - raw.left.cx()) * z / f, (l.y() - raw.left.cy()) * z / f,
+                                   z);
       const Eigen::Vector3d back = rectifier.T_rect_camera().inverse() * p_rect;
       EXPECT_LT((back - points_camera[i]).norm(), 1e-6 * z) << model << " " << i;
     }
@@ -252,9 +254,9 @@ TEST(StereoRectifier, RectifiedImagesTriangulateToTheCameraFrame) {
   for (double x : {-1.0, -0.2, 0.7})
     for (double y : {-0.5, 0.4}) {
       points_camera.emplace_back(x, y, 3.0);
-      points_right.push_back(raw.right.rectification_matrix.transpose() *
-                             (raw.left.rectification_matrix * points_camera.back() -
-                              Eigen::Vector3d(B, 0, 0)));
+      points_right.push_back(
+          raw.right.rectification_matrix.transpose() *
+          (raw.left.rectification_matrix * points_camera.back() - Eigen::Vector3d(B, 0, 0)));
     }
   const auto left_px = project_raw(raw.left, points_camera);
   const auto right_px = project_raw(raw.right, points_right);
@@ -264,7 +266,8 @@ TEST(StereoRectifier, RectifiedImagesTriangulateToTheCameraFrame) {
     const Eigen::Vector2d r = centroid(images.right, rectifier.right().rectify_point(right_px[i]));
     EXPECT_NEAR(l.y(), r.y(), 0.1) << i;
     const double z = f * B / (l.x() - r.x());
-    const Eigen::Vector3d p_rect((l.x() - raw.left.cx()) * z / f, (l.y() - raw.left.cy()) * z / f, z);
+    const Eigen::Vector3d p_rect((l.x() - raw.left.cx()) * z / f, (l.y() - raw.left.cy()) * z / f,
+                                 z);
     const Eigen::Vector3d back = rectifier.T_rect_camera().inverse() * p_rect;
     EXPECT_LT((back - points_camera[i]).norm(), 0.01) << i;  // 0.1 px of 37 px disparity
   }

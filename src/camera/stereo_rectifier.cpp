@@ -84,8 +84,8 @@ CameraRectifier::CameraRectifier(const CameraInfo& raw, const std::string& name)
     cv::fisheye::initUndistortRectifyMap(maps_->K, maps_->D, maps_->R, maps_->P, size, CV_16SC2,
                                          maps_->map1, maps_->map2);
   else
-    cv::initUndistortRectifyMap(maps_->K, maps_->D, maps_->R, maps_->P, size, CV_16SC2,
-                                maps_->map1, maps_->map2);
+    cv::initUndistortRectifyMap(maps_->K, maps_->D, maps_->R, maps_->P, size, CV_16SC2, maps_->map1,
+                                maps_->map2);
 
   rectified_ = raw;
   rectified_.camera_matrix = raw.projection_matrix.leftCols<3>();

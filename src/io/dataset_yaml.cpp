@@ -11,9 +11,7 @@
 
 namespace l2s::io {
 
-std::string to_string(ImageKind images) {
-  return images == ImageKind::Raw ? "raw" : "rectified";
-}
+std::string to_string(ImageKind images) { return images == ImageKind::Raw ? "raw" : "rectified"; }
 
 DatasetInfo read_dataset_info(const std::string& path) {
   const YAML::Node root = yaml::load_file(path);

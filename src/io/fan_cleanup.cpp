@@ -55,8 +55,7 @@ std::size_t merge_lines(std::vector<Fitted>& lines, const OffsetProfile& profile
 // Refits every line under the prior of the finished fan: a line whose own
 // returns could not tell its offset (one distance only) took the prior of the
 // moment, perhaps the wrong block's; its established neighbours now say.
-void refit_all(std::vector<Fitted>& lines, const OffsetProfile& profile,
-               const FanParams& params) {
+void refit_all(std::vector<Fitted>& lines, const OffsetProfile& profile, const FanParams& params) {
   const OffsetPrior prior(lines, profile, params);
   for (Fitted& f : lines)
     if (f.sums.n > 0) f.line = fit(f.sums, prior, profile, params);
@@ -103,13 +102,13 @@ std::size_t dissolve_crossing(std::vector<Fitted>& lines, const FanParams& param
     const Line& a = lines[k].line;
     const Line& b = lines[k + 1].line;
     const double crossing = (b.h < a.h) ? (b.t - a.t) / (a.h - b.h)  // [1/m]
-                                         : std::numeric_limits<double>::infinity();
+                                        : std::numeric_limits<double>::infinity();
     if (crossing * params.crossing_range >= 1.0) {
       ++k;
       continue;
     }
-    lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(
-                                    lines[k].sums.n < lines[k + 1].sums.n ? k : k + 1));
+    lines.erase(lines.begin() +
+                static_cast<std::ptrdiff_t>(lines[k].sums.n < lines[k + 1].sums.n ? k : k + 1));
     ++dissolved;
     if (k > 0) --k;  // the new neighbours are compared next
   }
@@ -129,9 +128,9 @@ std::size_t dissolve_strays(std::vector<Fitted>& lines) {
   std::nth_element(counts.begin(), counts.begin() + counts.size() / 2, counts.end());
   const double stray = kStrayShare * counts[counts.size() / 2];
   const std::size_t before = lines.size();
-  lines.erase(std::remove_if(lines.begin(), lines.end(),
-                             [&](const Fitted& f) { return f.sums.n < stray; }),
-              lines.end());
+  lines.erase(
+      std::remove_if(lines.begin(), lines.end(), [&](const Fitted& f) { return f.sums.n < stray; }),
+      lines.end());
   return before - lines.size();
 }
 

@@ -23,11 +23,12 @@ void split_run(const Run& sorted, std::size_t begin, std::size_t end, const FanP
     for (std::size_t i = from; i < to; ++i) group.push_back(sorted[i].second);
     groups.push_back(group);
   };
-  const double low = sorted[begin].first, min_gap =
-      params.min_gap * v_per_radian(sorted[(begin + end) / 2].first);
+  const double low = sorted[begin].first,
+               min_gap = params.min_gap * v_per_radian(sorted[(begin + end) / 2].first);
   if (sorted[end - 1].first - low < min_gap) return emit(begin, end);
   const double bin = 0.2 * min_gap;
-  std::vector<double> density(static_cast<std::size_t>((sorted[end - 1].first - low) / bin) + 3, 0.0);
+  std::vector<double> density(static_cast<std::size_t>((sorted[end - 1].first - low) / bin) + 3,
+                              0.0);
   for (std::size_t i = begin; i < end; ++i)
     density[static_cast<std::size_t>((sorted[i].first - low) / bin) + 1] += 1.0;
   for (int pass = 0; pass < 2; ++pass) {  // [1 2 1] / 4 twice: a kernel of ~1 bin sigma
@@ -72,8 +73,8 @@ std::vector<std::vector<std::size_t>> groups_of(const Run& sorted, const FanPara
   std::vector<std::vector<std::size_t>> groups;
   std::size_t begin = 0;
   for (std::size_t s = 1; s <= sorted.size(); ++s) {
-    if (s < sorted.size() && sorted[s].first - sorted[s - 1].first <=
-                                 params.min_gap * v_per_radian(sorted[s].first))
+    if (s < sorted.size() &&
+        sorted[s].first - sorted[s - 1].first <= params.min_gap * v_per_radian(sorted[s].first))
       continue;
     split_run(sorted, begin, s, params, groups);
     begin = s;
@@ -93,7 +94,8 @@ std::vector<std::vector<std::size_t>> cluster(const std::vector<Point>& points,
   Run sorted;
   for (std::size_t i : members) {
     const Match m = index.nearest(points[i]);
-    sorted.emplace_back(m.line < 0 ? profile.intercept(points[i]) : lines[m.line].t + m.residual, i);
+    sorted.emplace_back(m.line < 0 ? profile.intercept(points[i]) : lines[m.line].t + m.residual,
+                        i);
   }
   std::sort(sorted.begin(), sorted.end());
   return groups_of(sorted, params);

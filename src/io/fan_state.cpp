@@ -15,7 +15,7 @@ double rss(const LineSums& s, const Line& l) {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr double kEstablished = 0.003;    // [m] sigma of h below which a line is established
+constexpr double kEstablished = 0.003;     // [m] sigma of h below which a line is established
 constexpr double kNeighbourSigma = 0.004;  // [m] neighbours' offsets differ by mm
 constexpr double kJump = 0.015;            // [m] a step between blocks of lasers
 

@@ -41,9 +41,8 @@ std::vector<std::vector<std::size_t>> chunks_by_distance(const std::vector<Point
 // the nearest line is sure they are not its own (they may start a new line),
 // else to `uncertain`.
 void extend_lines(const std::vector<Point>& points, const std::vector<std::size_t>& candidates,
-                  std::vector<Fitted>& lines, const OffsetProfile& profile,
-                  const FanParams& params, std::vector<std::size_t>& outliers,
-                  std::vector<std::size_t>& uncertain) {
+                  std::vector<Fitted>& lines, const OffsetProfile& profile, const FanParams& params,
+                  std::vector<std::size_t>& outliers, std::vector<std::size_t>& uncertain) {
   const LineIndex index(plain(lines));
   const OffsetPrior prior(lines, profile, params);
   std::vector<LineSums> added(lines.size());

@@ -25,8 +25,8 @@ Line fit_line(const LineSums& s, double h_prior, double prior_sigma, double nois
   // at the expected noise keep the scale of a line with few returns sane.
   constexpr double kPriorWeight = 4.0;
   const double dof = std::max(0.0, s.n - 1.0);
-  line.scale = std::max(floor, std::sqrt((std::max(0.0, rss) + kPriorWeight * noise * noise) /
-                                         (dof + kPriorWeight)));
+  line.scale = std::max(
+      floor, std::sqrt((std::max(0.0, rss) + kPriorWeight * noise * noise) / (dof + kPriorWeight)));
   line.count = static_cast<std::size_t>(s.n);
   line.u_low = s.u_min;
   line.u_high = s.u_max;

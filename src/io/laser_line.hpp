@@ -52,13 +52,13 @@ struct LineSums {
 
 /// One laser: v = t + h u.
 struct Line {
-  double t = 0.0;           ///< tan(elevation)
-  double h = 0.0;           ///< [m] vertical origin offset
-  double scale = 0.0;       ///< residual scale (rms, floored at the noise floor), v units
+  double t = 0.0;      ///< tan(elevation)
+  double h = 0.0;      ///< [m] vertical origin offset
+  double scale = 0.0;  ///< residual scale (rms, floored at the noise floor), v units
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();  ///< of (t, h) per unit residual variance
-  double u_low = 0.0;       ///< [1/m] range of u of its points
+  double u_low = 0.0;                             ///< [1/m] range of u of its points
   double u_high = 0.0;
-  std::size_t count = 0;    ///< points in the last fit
+  std::size_t count = 0;  ///< points in the last fit
 
   double predict(double u) const { return t + h * u; }
   /// Standard deviation of a new return at u about the prediction (noise and

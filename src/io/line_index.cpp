@@ -10,11 +10,11 @@
 namespace l2s::io::fan {
 namespace {
 
-constexpr double kBinU = 0.02;   // [1/m] predictions move by |dh| * 0.01 within a bin
-constexpr double kMaxU = 2.0;    // [1/m] nearer returns (< 0.5 m, where lines converge) are bisected
-constexpr double kMinCellV = 0.001;  // v units (0.06 deg), a sixth of the HDL-64E's spacing
-constexpr double kMarginV = 0.05;  // cells beyond the outer lines
-constexpr std::size_t kReach = 2;  // neighbours either side checked exactly after bisection
+constexpr double kBinU = 0.02;  // [1/m] predictions move by |dh| * 0.01 within a bin
+constexpr double kMaxU = 2.0;   // [1/m] nearer returns (< 0.5 m, where lines converge) are bisected
+constexpr double kMinCellV = 0.001;      // v units (0.06 deg), a sixth of the HDL-64E's spacing
+constexpr double kMarginV = 0.05;        // cells beyond the outer lines
+constexpr std::size_t kReach = 2;        // neighbours either side checked exactly after bisection
 constexpr std::size_t kLookupReach = 1;  // and after a table lookup (cells are fine)
 
 }  // namespace

@@ -8,19 +8,19 @@
 namespace l2s::io::fan {
 namespace {
 
-constexpr double kMaxU = 2.0;               // [1/m] returns nearer than 0.5 m shift too far per step
-constexpr double kCoarseStep = 0.01;        // [m] of h in the first pass
+constexpr double kMaxU = 2.0;         // [1/m] returns nearer than 0.5 m shift too far per step
+constexpr double kCoarseStep = 0.01;  // [m] of h in the first pass
 constexpr std::size_t kMinBandPoints = 40;  // fewer make a noisy histogram
 constexpr double kMinGain = 0.03;           // a band's best h must sharpen it by 3 % to count
 
 // Sum of c log c over the counts c of neighbouring bin pairs of a histogram
 // (pairs soften bin-edge effects), i.e. minus their entropy: large when the
 // intercepts pile up into peaks.
-double sharpness(const std::vector<std::uint32_t>& histogram, std::size_t begin,
-                 std::size_t end) {
+double sharpness(const std::vector<std::uint32_t>& histogram, std::size_t begin, std::size_t end) {
   static const std::vector<double> table = [] {  // c log c for small c: no log per bin
     std::vector<double> values(4096, 0.0);
-    for (std::size_t c = 2; c < values.size(); ++c) values[c] = c * std::log(static_cast<double>(c));
+    for (std::size_t c = 2; c < values.size(); ++c)
+      values[c] = c * std::log(static_cast<double>(c));
     return values;
   }();
   double score = 0.0;

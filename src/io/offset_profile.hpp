@@ -18,10 +18,10 @@
 namespace l2s::io::fan {
 
 struct ProfileParams {
-  double offset_range = 0.5;   ///< [m] |h| searched for the whole fan
-  double band_range = 0.12;    ///< [m] a band's h is searched this far from the fan's
-  double band_width = 0.03;    ///< tangent units (~1.7 deg) of one band
-  double bin = 0.0005;         ///< tangent units (~0.03 deg) of one histogram bin
+  double offset_range = 0.5;      ///< [m] |h| searched for the whole fan
+  double band_range = 0.12;       ///< [m] a band's h is searched this far from the fan's
+  double band_width = 0.03;       ///< tangent units (~1.7 deg) of one band
+  double bin = 0.0005;            ///< tangent units (~0.03 deg) of one histogram bin
   std::size_t max_points = 3000;  ///< returns used (every k-th), for speed
 };
 

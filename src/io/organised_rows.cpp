@@ -17,10 +17,11 @@
 namespace l2s::io {
 namespace {
 
-constexpr double kPriorSigma = 0.3;  // [m] rows fit their own offset, this only steadies one-distance rows
-constexpr double kNoise = 0.0004;    // [v] expected elevation noise
-constexpr double kTight = 0.5;       // a row's 90th-percentile residual below this share of half the gap
-constexpr double kGoodRows = 0.9;    // share of rows that must be tight
+constexpr double kPriorSigma =
+    0.3;  // [m] rows fit their own offset, this only steadies one-distance rows
+constexpr double kNoise = 0.0004;  // [v] expected elevation noise
+constexpr double kTight = 0.5;  // a row's 90th-percentile residual below this share of half the gap
+constexpr double kGoodRows = 0.9;  // share of rows that must be tight
 
 struct Row {
   std::size_t row = 0;

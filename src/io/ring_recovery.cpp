@@ -79,7 +79,7 @@ void drop_thin_lines(const std::vector<fan::Point>& points, std::vector<fan::Lin
   if (kept.size() == lines.size() || kept.empty()) return;
   const fan::LineIndex index(kept);
   for (std::size_t i = 0; i < points.size(); ++i)
-    labels[i] = labels[i] < 0 ? -1
+    labels[i] = labels[i] < 0              ? -1
                 : renumber[labels[i]] >= 0 ? renumber[labels[i]]
                                            : index.nearest(points[i]).line;
   lines = std::move(kept);

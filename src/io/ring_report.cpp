@@ -15,12 +15,12 @@ namespace {
 constexpr double kDeg = 180.0 / 3.14159265358979;
 constexpr double kRingFreeContrast = 2.0;  // even spread: ~1
 constexpr double kDoubtContrast = 5.0;     // noisy HDL-64E (0.05 deg on 0.33): ~40
-constexpr double kWideRing = 0.5 / kDeg;  // [rad] a single "ring" wider than this is no scan line
-constexpr double kSparseRing = 0.02;     // a ring with < 2 % of the median returns
-constexpr double kOverlapContrast = 5.0;  // two lasers barely told apart: ~5; clean: tens
-constexpr int kMostRings = 256;          // no spinning lidar has more lasers
+constexpr double kWideRing = 0.5 / kDeg;   // [rad] a single "ring" wider than this is no scan line
+constexpr double kSparseRing = 0.02;       // a ring with < 2 % of the median returns
+constexpr double kOverlapContrast = 5.0;   // two lasers barely told apart: ~5; clean: tens
+constexpr int kMostRings = 256;            // no spinning lidar has more lasers
 constexpr std::size_t kReturnsPerRing = 10;  // fewer per ring: too many rings
-constexpr std::size_t kManyReturns = 1000;  // enough returns to expect several rings
+constexpr std::size_t kManyReturns = 1000;   // enough returns to expect several rings
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char text[160];
@@ -45,7 +45,8 @@ void decide_structure(RingRecoveryReport& report) {
   if (widths[widths.size() / 2] > kWideRing) {
     report.structure = ScanStructure::RingFree;
     report.structure_reason = format(
-        "returns spread %.1f deg (rms, median of %.0f fitted lines) around each line: no scan lines",
+        "returns spread %.1f deg (rms, median of %.0f fitted lines) around each line: no scan "
+        "lines",
         widths[widths.size() / 2] * kDeg, static_cast<double>(lasers));
     return;
   }
@@ -57,9 +58,9 @@ void decide_structure(RingRecoveryReport& report) {
         static_cast<double>(lasers), report.contrast);
     return;
   }
-  report.structure_reason =
-      format("%.0f scan lines; returns lie within %.0f %% of the half gap to the next line (median)",
-             static_cast<double>(lasers), 100.0 * report.fill);
+  report.structure_reason = format(
+      "%.0f scan lines; returns lie within %.0f %% of the half gap to the next line (median)",
+      static_cast<double>(lasers), 100.0 * report.fill);
 }
 
 void check_doubts(RingRecoveryReport& report) {
@@ -68,9 +69,9 @@ void check_doubts(RingRecoveryReport& report) {
   if (report.rings > kMostRings)
     add_doubt(report, format("%.0f rings, more than any spinning lidar has", report.rings));
   if (report.points < kReturnsPerRing * static_cast<std::size_t>(report.rings))
-    add_doubt(report, format("%.0f rings for %.0f returns (fewer than %.0f returns a ring)",
-                             report.rings, static_cast<double>(report.points),
-                             static_cast<double>(kReturnsPerRing)));
+    add_doubt(report,
+              format("%.0f rings for %.0f returns (fewer than %.0f returns a ring)", report.rings,
+                     static_cast<double>(report.points), static_cast<double>(kReturnsPerRing)));
   if (lasers <= 2 && report.points >= kManyReturns)
     add_doubt(report, format("only %.0f ring(s) in %.0f returns", static_cast<double>(lasers),
                              static_cast<double>(report.points)));

@@ -36,8 +36,7 @@ void check_camera_matrix(const CameraInfo& camera, const std::string& path) {
     throw FileError(path, "camera_matrix: expected [fx s cx; 0 fy cy; 0 0 1]");
   if (!(K(0, 2) > 0.0 && K(0, 2) < camera.width && K(1, 2) > 0.0 && K(1, 2) < camera.height))
     throw FileError(path, "camera_matrix: principal point (" + number(K(0, 2)) + ", " +
-                              number(K(1, 2)) + ") lies outside the " + size_of(camera) +
-                              " image");
+                              number(K(1, 2)) + ") lies outside the " + size_of(camera) + " image");
 }
 
 void check_distortion(const CameraInfo& camera, const std::string& path) {

@@ -103,8 +103,8 @@ inline LaserTable hdl64e_table(unsigned seed = 3) {
   for (std::size_t k = 0; k < table.lasers.size(); ++k) {
     Laser& laser = table.lasers[k];
     const bool upper = k >= 32;
-    laser.vertical_offset = (upper ? 0.2066 : 0.1331) - (upper ? 0.0727 : 0.0687) * laser.elevation +
-                            scatter(rng);
+    laser.vertical_offset =
+        (upper ? 0.2066 : 0.1331) - (upper ? 0.0727 : 0.0687) * laser.elevation + scatter(rng);
     laser.lateral = k % 2 ? 0.026 : -0.026;
   }
   return table;
@@ -114,11 +114,10 @@ inline LaserTable hdl64e_table(unsigned seed = 3) {
 /// towards the ends; beams 4.2 cm off the axis, vertical offsets falling with
 /// elevation (-0.5 mm/deg) and scattered by 2 mm.
 inline LaserTable vlp32c_table(unsigned seed = 4) {
-  const std::vector<double> e = {-25,    -15.639, -11.31, -8.843, -7.254, -6.148, -5.333,
-                                 -4.667, -4,      -3.667, -3.333, -3,     -2.667, -2.333,
-                                 -2,     -1.667,  -1.333, -1,     -0.667, -0.333, 0,
-                                 0.333,  0.667,   1,      1.333,  1.667,  2.333,  3.333,
-                                 4.667,  7,       10.333, 15};
+  const std::vector<double> e = {-25,    -15.639, -11.31, -8.843, -7.254, -6.148, -5.333, -4.667,
+                                 -4,     -3.667,  -3.333, -3,     -2.667, -2.333, -2,     -1.667,
+                                 -1.333, -1,      -0.667, -0.333, 0,      0.333,  0.667,  1,
+                                 1.333,  1.667,   2.333,  3.333,  4.667,  7,      10.333, 15};
   LaserTable table = sweep_detail::build("VLP32C", sweep_detail::degrees_to_radians(e), 0.02, seed);
   std::mt19937 rng(seed + 100);
   std::normal_distribution<double> scatter(0.0, 0.002);
@@ -132,7 +131,8 @@ inline LaserTable vlp32c_table(unsigned seed = 4) {
 /// The model offset h_k of a laser: its returns lie on z = d * tan(e) + h_k
 /// (exactly without a lateral offset, within millimetres with one).
 inline double model_offset(const Laser& laser) {
-  return laser.vertical_offset / std::cos(laser.elevation) - laser.radial * std::tan(laser.elevation);
+  return laser.vertical_offset / std::cos(laser.elevation) -
+         laser.radial * std::tan(laser.elevation);
 }
 
 /// The point a laser returns at `range` along its beam fired at `azimuth`.
@@ -150,12 +150,12 @@ inline Eigen::Vector3d fire(const Laser& laser, double azimuth, double range) {
 /// How points are spread over the beams and what corrupts them.
 struct SweepOptions {
   int points_per_laser = 400;
-  double min_range = 0.2;            ///< [m] ranges are log-uniform in [min, max]
-  double max_range = 60.0;           ///< [m]
-  double range_sigma = 0.01;         ///< [m] range noise (along the beam)
-  double jitter_deg = 0.02;          ///< [deg] elevation noise per return
-  std::set<int> silent;              ///< lasers without any return
-  int invalid_points = 100;          ///< NaN and (0, 0, 0) "no return" points
+  double min_range = 0.2;     ///< [m] ranges are log-uniform in [min, max]
+  double max_range = 60.0;    ///< [m]
+  double range_sigma = 0.01;  ///< [m] range noise (along the beam)
+  double jitter_deg = 0.02;   ///< [deg] elevation noise per return
+  std::set<int> silent;       ///< lasers without any return
+  int invalid_points = 100;   ///< NaN and (0, 0, 0) "no return" points
   unsigned seed = 17;
 };
 

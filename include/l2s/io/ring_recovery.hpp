@@ -36,11 +36,11 @@ std::string to_string(ScanStructure structure);
 
 /// One laser as recovered: its returns lie on z = d * tan(elevation) + offset.
 struct LaserFit {
-  int ring = 0;             ///< index its returns were given
-  double elevation = 0.0;   ///< [rad]
-  double offset = 0.0;      ///< [m] vertical origin offset (the model's h)
-  double rms = 0.0;         ///< [rad] rms elevation residual of its returns
-  std::size_t points = 0;   ///< returns given this ring
+  int ring = 0;            ///< index its returns were given
+  double elevation = 0.0;  ///< [rad]
+  double offset = 0.0;     ///< [m] vertical origin offset (the model's h)
+  double rms = 0.0;        ///< [rad] rms elevation residual of its returns
+  std::size_t points = 0;  ///< returns given this ring
   /// Its returns in the inner quarter of the half gap to the next ring per
   /// return in the outer quarter (returns beyond 2 m): tens for a separate
   /// scan line, a few where two rings overlap; 0 when not measured.
