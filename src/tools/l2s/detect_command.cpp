@@ -56,6 +56,8 @@ std::string write_image(const fs::path& folder, const std::string& name, const I
 
 int run_detect(const DetectOptions& options) {
   const auto dataset = io::Dataset::open(options.dataset);
+  for (const std::string& warning : dataset.warnings())
+    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
   const Calibrator::Params params = options.params_file.empty()
                                         ? Calibrator::Params::preset(options.preset)
                                         : io::read_calibrator_params(options.params_file);
@@ -69,6 +71,13 @@ int run_detect(const DetectOptions& options) {
       options.params_file.empty() ? "preset " + options.preset : options.params_file;
   std::printf("frame   %s of %s (%s)\n", frame.stem.c_str(), options.dataset.c_str(),
               params_name.c_str());
+  if (frame.ring_recovery) {  // no ring field in the sweep: say how its rings were found
+    std::printf("rings   %s\n", frame.ring_recovery->summary().c_str());
+    if (frame.ring_recovery->structure == io::ScanStructure::RingFree || frame.ring_recovery->doubtful)
+      std::fprintf(stderr, "l2s: warning: ring structure of frame %s: %s\n", frame.stem.c_str(),
+                   frame.ring_recovery->doubtful ? frame.ring_recovery->doubt.c_str()
+                                                 : frame.ring_recovery->structure_reason.c_str());
+  }
   const Target& target = dataset.target();
   std::printf("target  %.3f x %.3f m board, holes r %.3f m on %.3f x %.3f m%s\n\n",
               target.board_width, target.board_height, target.hole_radius, target.hole_spacing_x,
