@@ -8,6 +8,9 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/stereo_rectifier.hpp>
+
+#include <memory>
 
 namespace l2s::detail {
 
@@ -27,9 +30,21 @@ bool is_ring_free(const LidarCloud& sweep);
 /// inside the lidar pass-through (ring and intensity dropped).
 LidarCloud accumulate_ring_free(const std::vector<const LidarCloud*>& sweeps, const Calibrator::Params& params);
 
-/// Camera: SGM stereo, pass-through, board plane, Sobel edges, circles, and
-/// (default preset) the board pose fitted to the hole rims in both images.
-BranchReport run_camera_branch(const Image& left, const Image& right, const StereoCamera& cameras,
+/// The cameras as the camera branch works with them: rectified. For raw
+/// images, the rectifier (its maps are built once) and the rectified pair.
+struct CameraSetup {
+  StereoCamera cameras;                         ///< rectified: what the stages use
+  std::shared_ptr<const StereoRectifier> rectifier;  ///< set for raw images
+
+  /// Throws ParamError for cameras a rectifier cannot be built for.
+  explicit CameraSetup(const StereoCamera& given);
+};
+
+/// Camera: (raw images: rectification), SGM stereo, board plane, Sobel edges,
+/// circles, and (default preset) the board pose fitted to the hole rims in
+/// both images. The centres come in the camera frame of DATASET.md: for raw
+/// images the physical left camera's, not the rectified frame.
+BranchReport run_camera_branch(const Image& left, const Image& right, const CameraSetup& setup,
                                const Target& target, const Calibrator::Params& params,
                                CameraInspection* trace = nullptr);
 

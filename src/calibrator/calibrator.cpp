@@ -27,6 +27,7 @@ BranchReport timed(Branch&& branch) {
 
 struct Calibrator::Impl {
   StereoCamera cameras;
+  detail::CameraSetup camera_setup;  // rectified cameras (and the rectifier for raw images)
   Target target;
   Params params;
   CenterAccumulator lidar_centers;
@@ -68,6 +69,7 @@ struct Calibrator::Impl {
 
   Impl(StereoCamera c, Target t, Params p)
       : cameras(std::move(c)),
+        camera_setup(cameras),
         target(t),
         params(std::move(p)),
         lidar_centers(params.accumulator),
@@ -91,7 +93,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   const auto lidar_branch = [&] { return impl.lidar_branch(lidar); };
   const auto camera_branch = [&] {
     return timed([&] {
-      return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params);
+      return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params);
     });
   };
 
@@ -111,7 +113,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
 
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
   const Impl& impl = *impl_;
-  return timed([&] { return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params); });
+  return timed([&] { return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params); });
 }
 
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {

@@ -213,12 +213,26 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
 
 }  // namespace
 
-BranchReport run_camera_branch(const Image& left, const Image& right, const StereoCamera& cameras,
+CameraSetup::CameraSetup(const StereoCamera& given) : cameras(given) {
+  if (given.images != ImageKind::Raw) return;
+  rectifier = std::make_shared<const StereoRectifier>(given);
+  cameras = rectifier->rectified();
+}
+
+BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, const CameraSetup& setup,
                                const Target& target, const Calibrator::Params& params,
                                CameraInspection* trace) {
   CameraInspection local;
   CameraInspection& t = trace ? *trace : local;
   BranchReport report;
+  if (setup.rectifier) {
+    RectifiedPair pair = setup.rectifier->rectify(raw_left, raw_right);
+    t.rectified = RectifiedView{std::move(pair.left), std::move(pair.right), setup.cameras,
+                                setup.rectifier->R_rect_camera()};
+  }
+  const Image& left = t.rectified ? t.rectified->left : raw_left;
+  const Image& right = t.rectified ? t.rectified->right : raw_right;
+  const StereoCamera& cameras = setup.cameras;
   const CameraFrame frame{left, right, gray_mat(left, "left"), gray_mat(right, "right"), cameras, target, params};
   const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
   if (!planes) return report;
@@ -239,6 +253,10 @@ BranchReport run_camera_branch(const Image& left, const Image& right, const Ster
   report.centers = best->circles.centers;
   report.found = true;
   take_refined_centres(*best, report);
+  if (setup.rectifier) {
+    const Eigen::Isometry3d T_camera_rect = setup.rectifier->T_rect_camera().inverse();
+    for (Eigen::Vector3d& c : report.centers) c = T_camera_rect * c;
+  }
   return report;
 }
 

@@ -225,7 +225,7 @@ CameraInspection inspect_camera(const Image& left, const Image& right, const Ste
   target.validate();
   CameraInspection inspection;
   const auto start = std::chrono::steady_clock::now();
-  inspection.report = detail::run_camera_branch(left, right, cameras, target, params, &inspection);
+  inspection.report = detail::run_camera_branch(left, right, detail::CameraSetup(cameras), target, params, &inspection);
   inspection.report.milliseconds = elapsed_ms(start);
   return inspection;
 }

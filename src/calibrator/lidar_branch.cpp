@@ -26,10 +26,6 @@ struct LidarAttempt {
   CircleFinder::Result circles;
 };
 
-/// Rings smaller than this count are no ring structure (a non-repetitive scan
-/// recovers as one or two "rings").
-constexpr int kMinRings = 4;
-
 /// Hole edges (ring discontinuities, or the occupancy of a ring-free cloud)
 /// and circles on one plane candidate, and the evidence for the verifier.
 class LidarHypothesisTester {
@@ -126,8 +122,10 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
     return fail(report, "pass_through", "no finite points inside the pass-through limits");
   // Rings are recovered after filtering: the board's rings are what matters, and
   // fewer points cluster faster. A cloud without a ring structure is ring-free.
-  if (!cloud.has_ring()) t.ring_free = io::recover_rings(cloud) < kMinRings;
-  if (t.ring_free) cloud.ring.clear();
+  if (!cloud.has_ring()) {
+    t.ring_free = io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
+    if (!t.ring_free) io::recover_rings(cloud);
+  }
 
   const auto& planes = t.plane.emplace(PlaneSegmenter(params.lidar_plane).segment(cloud.points, target));
   if (!planes.found) return fail(report, "plane", planes.reason);
@@ -154,9 +152,7 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
 bool is_ring_free(const LidarCloud& sweep) {
   // Bad input goes the ordinary way, whose report names the problem.
   if (sweep.has_ring() || sweep.size() < 3) return false;
-  LidarCloud probe;
-  probe.points = sweep.points;
-  return io::recover_rings(probe) < kMinRings;
+  return io::classify_scan(sweep).structure == io::ScanStructure::RingFree;
 }
 
 LidarCloud accumulate_ring_free(const std::vector<const LidarCloud*>& sweeps, const Calibrator::Params& params) {
