@@ -121,6 +121,7 @@ void visit(V& v, EdgeFilter::Params& p) {
   v.field("adaptive_quantile", p.adaptive_quantile);
   v.field("adaptive_fraction", p.adaptive_fraction);
   v.field("min_sobel_threshold", p.min_sobel_threshold);
+  v.field("noise_factor", p.noise_factor);
   v.field("region_dilation_px", p.region_dilation_px);
   v.choice("magnitude", p.magnitude, {{M::Hypot, "hypot"}, {M::HalfL1, "half_l1"}});
   v.field("remove_border_lines", p.remove_border_lines);

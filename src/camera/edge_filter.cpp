@@ -18,6 +18,7 @@
 #include <l2s/error.hpp>
 
 #include "camera/cv_image.hpp"
+#include "camera/noise_level.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -93,11 +94,15 @@ EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const Ster
       if (mask.at<std::uint8_t>(y, x)) values.push_back(magnitude.at<float>(y - padded.y, x - padded.x));
   if (values.empty()) return out;
   out.threshold = params.sobel_threshold;
+  // A Sobel response has 3.5 times the image noise's sigma per axis; four of
+  // those keep noise out of the edges of a low-contrast board.
+  const double noise_floor = params.noise_factor * std::sqrt(12.0) * detail::image_noise_sigma(gray);
   if (params.adaptive_quantile > 0.0) {
     auto q = values.begin() + static_cast<std::ptrdiff_t>(params.adaptive_quantile * (values.size() - 1));
     std::nth_element(values.begin(), q, values.end());
     const double adaptive = params.adaptive_fraction * static_cast<double>(*q);
-    out.threshold = std::min(params.sobel_threshold, std::max(params.min_sobel_threshold, adaptive));
+    out.threshold =
+        std::min(params.sobel_threshold, std::max({params.min_sobel_threshold, noise_floor, adaptive}));
   }
   for (int y = box.y; y < box.y + box.height; ++y)
     for (int x = box.x; x < box.x + box.width; ++x) {
@@ -170,6 +175,7 @@ void EdgeFilter::Params::validate() const {
   if (!(min_sobel_threshold >= 0.0 && min_sobel_threshold <= 255.0))
     throw ParamError("min_sobel_threshold", "must be in [0, 255]");
   if (region_dilation_px < 0 || region_dilation_px > 50) throw ParamError("region_dilation_px", "must be 0..50");
+  if (!(noise_factor >= 0.0)) throw ParamError("noise_factor", "must be >= 0");
 }
 
 EdgeFilter::EdgeFilter(Params params) : params_(params) { params_.validate(); }

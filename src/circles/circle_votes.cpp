@@ -10,12 +10,19 @@ namespace {
 /// A 2D vote accumulator over the points' bounding box widened by a radius.
 class Accumulator {
  public:
-  Accumulator(const std::vector<EdgePoint2>& points, double radius, double cell) : cell_(cell) {
+  /// The cell grows when the points spread wide (a candidate plane may be a whole wall): the grid
+  /// never holds more than kMaxCells, whatever the input.
+  Accumulator(const std::vector<EdgePoint2>& points, double radius, double cell) {
     Eigen::AlignedBox2d box;
-    for (const EdgePoint2& p : points) box.extend(p.q);
+    for (const EdgePoint2& p : points)
+      if (p.q.allFinite()) box.extend(p.q);
+    if (box.isEmpty()) return;
+    const Eigen::Vector2d span = box.sizes() + Eigen::Vector2d::Constant(2.0 * radius);
+    cell = std::max(cell, std::sqrt(span.x() * span.y() / kMaxCells));
+    cell_ = cell;
     origin_ = box.min() - Eigen::Vector2d::Constant(radius + 2.0 * cell);
-    width_ = static_cast<int>(std::ceil((box.sizes().x() + 2.0 * radius) / cell)) + 5;
-    height_ = static_cast<int>(std::ceil((box.sizes().y() + 2.0 * radius) / cell)) + 5;
+    width_ = static_cast<int>(std::ceil(span.x() / cell)) + 5;
+    height_ = static_cast<int>(std::ceil(span.y() / cell)) + 5;
     votes_.assign(static_cast<std::size_t>(width_) * height_, 0.0f);
   }
 
@@ -67,7 +74,8 @@ class Accumulator {
   float& at(int x, int y) { return votes_[index(x, y)]; }
   float at(int x, int y) const { return votes_[index(x, y)]; }
 
-  double cell_;
+  static constexpr double kMaxCells = 4.0e6;
+  double cell_ = 0.0;
   Eigen::Vector2d origin_;
   int width_ = 0, height_ = 0;
   std::vector<float> votes_;
@@ -78,11 +86,11 @@ class Accumulator {
 std::vector<CircleCandidate2> find_circle_candidates_by_votes(const std::vector<EdgePoint2>& points,
                                                               const CandidateSearch& search) {
   std::vector<CircleCandidate2> candidates;
-  if (points.size() < 2) return candidates;
+  if (points.size() < 2 || !(search.radius > 0.0)) return candidates;
   const double r = search.radius;
   Accumulator votes(points, r, std::max(0.002, 0.25 * search.inlier_threshold));
   for (const EdgePoint2& p : points) {
-    if (p.direction.squaredNorm() < 0.5) continue;
+    if (p.direction.squaredNorm() < 0.5 || !p.q.allFinite()) continue;
     votes.vote(p.q + r * p.direction);  // the hole may be darker or brighter than the board
     votes.vote(p.q - r * p.direction);
   }

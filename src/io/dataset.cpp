@@ -118,6 +118,8 @@ Frame Dataset::load(std::size_t index) const {
     frame.ring_recovery = sweep.height > 1 ? rings_from_rows(frame.lidar, sweep.height)
                                            : recover_ring_structure(frame.lidar);
     frame.ring_source = frame.ring_recovery->source;
+    // A ring-free scan has no rings to give: the calibrator accumulates it instead.
+    if (frame.ring_recovery->structure == ScanStructure::RingFree) frame.lidar.ring.clear();
   }
   return frame;
 }

@@ -1,5 +1,7 @@
 #include "verify/stereo_evidence.hpp"
 
+#include "camera/noise_level.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -76,21 +78,6 @@ int photo_vote(const cv::Mat& left, const cv::Mat& right, const Eigen::Vector2d&
   return 0;
 }
 
-/// Image noise [gray levels] from the median absolute difference of
-/// horizontal neighbours on a grid of pixels: texture makes few large
-/// differences, noise many small ones.
-double noise_sigma(const cv::Mat& image) {
-  std::vector<double> differences;
-  const int step = std::max(1, static_cast<int>(std::sqrt(image.rows * image.cols / 20000.0)));
-  for (int y = 0; y < image.rows; y += step) {
-    const std::uint8_t* row = image.ptr<std::uint8_t>(y);
-    for (int x = 0; x + 1 < image.cols; x += step) differences.push_back(std::abs(row[x + 1] - row[x]));
-  }
-  if (differences.empty()) return 0.0;
-  std::nth_element(differences.begin(), differences.begin() + differences.size() / 2, differences.end());
-  return 1.4826 * differences[differences.size() / 2] / std::sqrt(2.0);
-}
-
 /// Board-frame sample positions on a square grid of `step` [m] within a region.
 template <class Inside>
 std::vector<Eigen::Vector2d> grid(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double step, int max_samples,
@@ -112,7 +99,7 @@ BoardEvidence stereo_evidence(const cv::Mat& left, const cv::Mat& right, const S
                               const Eigen::Isometry3d& T_camera_board, const Target& target,
                               const BoardVerifier::Params& verifier, const StereoEvidenceParams& params) {
   BoardEvidence evidence;
-  const double min_sigma = std::max(params.min_contrast, params.noise_factor * noise_sigma(left));
+  const double min_sigma = std::max(params.min_contrast, params.noise_factor * image_noise_sigma(left));
   const double depth = std::max(0.1, T_camera_board.translation().z());
   const double step = params.sample_step_px * depth / cameras.left.fx();
   const auto vote = [&](const Eigen::Vector2d& q) {

@@ -18,7 +18,7 @@ namespace l2s::io {
 /// One synchronised frame of both sensors.
 struct Frame {
   std::string stem;  ///< file stem shared by the three files, e.g. "000000"
-  LidarCloud lidar;  ///< ring always filled (recovered when the file had none)
+  LidarCloud lidar;  ///< ring filled (recovered when the file had none), except for a ring-free scan: empty
   Image left;        ///< as stored (gray or BGR)
   Image right;
   RingSource ring_source = RingSource::Field;  ///< where `lidar.ring` came from
