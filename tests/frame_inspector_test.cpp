@@ -4,6 +4,7 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/viz/inspection_images.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include "support/test_data.hpp"

@@ -1,6 +1,7 @@
 #pragma once
 // The picture users check a calibration with: lidar points projected into the
-// left image with the estimated transform, coloured by range.
+// left image with the estimated transform, coloured by range. Part of
+// l2scalib::viz.
 
 #include <l2s/camera.hpp>
 #include <l2s/types.hpp>
