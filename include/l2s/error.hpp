@@ -1,6 +1,7 @@
 #pragma once
 // The error family of l2scalib. Invalid input or configuration throws one of
 // these; expected failures (no board in a frame) are statuses in results.
+// Every class here may be caught as l2s::Error (or std::runtime_error).
 
 #include <cassert>
 #include <stdexcept>
@@ -37,6 +38,19 @@ class ParamError : public Error {
  private:
   std::string field_;
   std::string problem_;
+};
+
+/// Data handed to a function that cannot be used: an image that does not fit
+/// its camera, a calibration result that failed. The message starts with the
+/// input's name ("left image: ...", "result: ...").
+class InputError : public Error {
+ public:
+  InputError(const std::string& input, const std::string& problem)
+      : Error(input + ": " + problem), input_(input) {}
+  const std::string& input() const { return input_; }
+
+ private:
+  std::string input_;
 };
 
 }  // namespace l2s

@@ -56,8 +56,8 @@ LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params);
 
 /// Runs the camera branch on one rectified pair and keeps every stage's result.
-/// Throws ParamError for invalid params or target, or images whose size
-/// differs from the cameras.
+/// Throws ParamError for invalid params, target or cameras, InputError naming
+/// an image that cannot be used (as Calibrator::add).
 CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
                                 const Target& target, const Calibrator::Params& params);
 

@@ -21,6 +21,8 @@ void write_calibrator_params(const std::string& path, const Calibrator::Params& 
 /// Writes a calibration result atomically: T_lidar_camera (DATASET.md), its
 /// inverse, quaternion, roll/pitch/yaw, ROS static_transform_publisher
 /// arguments for both directions, centroids, residuals and per-frame diagnostics.
+/// Throws InputError("result", ...) for a result that is not found (nothing is
+/// written, an existing file stays), FileError when the file cannot be written.
 void write_calibration_result(const std::string& path, const Calibrator::Result& result,
                               const std::string& dataset = "", const std::string& preset = "");
 
