@@ -59,7 +59,8 @@ class BoardPoseRefiner {
 
   /// `left`, `right`: rectified 8-bit images (gray or BGR); `T_camera_board`:
   /// initial pose, board frame as in target.hpp. Throws ParamError for an
-  /// invalid target or images that disagree with the cameras.
+  /// invalid target, InputError naming the image when one is unusable or its
+  /// size differs from the other's or its camera's.
   Result refine(const Image& left, const Image& right, const StereoCamera& camera,
                 const Target& target, const Eigen::Isometry3d& T_camera_board) const;
 

@@ -64,7 +64,10 @@ class EdgeFilter {
   /// `left`: the rectified left image (gray or BGR) the cloud's pixels refer
   /// to; `camera`: its camera (edge pixels are cast onto the plane through
   /// it); `board_cloud`: stereo points of the board plane; `plane_camera`:
-  /// that plane; `target`: the board, for the border lengths.
+  /// that plane; `target`: the board, for the border lengths. Throws
+  /// InputError naming the image when it is unusable or not the camera's
+  /// size, ParamError for an invalid target or a cloud whose pixels and
+  /// points differ in count.
   Result filter(const Image& left, const CameraInfo& camera, const StereoCloud& board_cloud,
                 const Plane& plane_camera, const Target& target) const;
 

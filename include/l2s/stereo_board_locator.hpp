@@ -58,7 +58,8 @@ class StereoBoardLocator {
   /// Rectified pair. `stereo`: the full-resolution matcher the regions are for
   /// (its depth range is the working range searched here, its other settings
   /// are used at the coarse scale); `pass_through`: the camera's box and range.
-  /// Throws ParamError when the images and cameras disagree in size.
+  /// Throws InputError naming the image when one is unusable (empty,
+  /// not 1 or 3 channels) or its size differs from the other's or its camera's.
   Result locate(const Image& left, const Image& right, const StereoCamera& cameras, const Target& target,
                 const StereoMatcher::Params& stereo, const PassThroughFilter::Params& pass_through) const;
 

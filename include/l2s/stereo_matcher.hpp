@@ -92,7 +92,8 @@ class StereoMatcher {
   const Params& params() const { return params_; }
 
   /// Matches a rectified pair (8-bit gray or BGR, same size as the cameras).
-  /// Throws ParamError when the images and cameras disagree in size.
+  /// Throws InputError naming the image when one is unusable (empty,
+  /// not 1 or 3 channels) or its size differs from the other's or its camera's.
   Result match(const Image& left, const Image& right, const StereoCamera& camera) const;
 
  private:
