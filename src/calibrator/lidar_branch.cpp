@@ -91,6 +91,8 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   if (sweep.empty()) return fail(report, "input", "empty sweep");
   if (sweep.has_ring() && sweep.ring.size() != sweep.size())
     return fail(report, "input", "ring field has a different length than the points");
+  if (sweep.has_intensity() && sweep.intensity.size() != sweep.size())
+    return fail(report, "input", "intensity field has a different length than the points");
 
   const auto& kept =
       t.pass_through.emplace(PassThroughFilter(params.lidar_pass_through).filter(sweep.points));
