@@ -18,6 +18,9 @@ endif()
 # Declares a library of the SDK with its l2scalib::<alias> name. The core
 # library (no COMPONENT) exports into l2scalibTargets, a component into
 # l2scalib_<component>Targets, loaded by find_package(l2scalib COMPONENTS ...).
+# Symbols are hidden unless a header marks them L2S_EXPORT (l2s/export.hpp);
+# on ELF a version script also keeps template instantiations of other
+# libraries' types (std::, YAML::, cv::) out of the dynamic symbol table.
 function(l2s_add_library name)
   cmake_parse_arguments(ARG "" "ALIAS;COMPONENT" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   set(exclude "")
@@ -31,7 +34,9 @@ function(l2s_add_library name)
     VERSION ${PROJECT_VERSION}
     SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
     CXX_EXTENSIONS OFF
-    POSITION_INDEPENDENT_CODE ON)
+    POSITION_INDEPENDENT_CODE ON
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON)
   target_include_directories(${name}
     PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
            $<BUILD_INTERFACE:${L2SCALIB_GENERATED_INCLUDE_DIR}>
@@ -39,9 +44,19 @@ function(l2s_add_library name)
     PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   target_compile_features(${name} PUBLIC cxx_std_17)
-  # No <target>_EXPORTS define: a static and a shared build then compile
-  # with the same command lines (one ccache entry for both).
-  set_target_properties(${name} PROPERTIES DEFINE_SYMBOL "")
+  if(WIN32)
+    if(NOT L2SCALIB_BUILD_SHARED)
+      target_compile_definitions(${name} PUBLIC L2S_STATIC)  # export.hpp: no dllimport
+    endif()
+  else()
+    # export.hpp needs no <target>_EXPORTS here; without it a static and a
+    # shared build compile with the same command lines (one ccache entry).
+    set_target_properties(${name} PROPERTIES DEFINE_SYMBOL "")
+  endif()
+  if(L2SCALIB_BUILD_SHARED AND CMAKE_SYSTEM_NAME STREQUAL "Linux")
+    target_link_options(${name} PRIVATE "LINKER:--version-script=${PROJECT_SOURCE_DIR}/cmake/l2scalib.map")
+    set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${PROJECT_SOURCE_DIR}/cmake/l2scalib.map)
+  endif()
   l2s_set_warnings(${name})
   if(L2SCALIB_INSTALL)
     if(ARG_COMPONENT)

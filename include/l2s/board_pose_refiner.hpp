@@ -4,6 +4,7 @@
 // circles of each hole) with the image edges by robust Gauss-Newton.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -13,7 +14,7 @@
 
 namespace l2s {
 
-class BoardPoseRefiner {
+class L2S_EXPORT BoardPoseRefiner {
  public:
   struct Params {
     int samples_per_rim = 360;     ///< points on each rim circle (front and back); ~1 per px of rim at 3 m, 16..2000

@@ -17,6 +17,7 @@
 #include <l2s/circle_finder.hpp>
 #include <l2s/discontinuity_filter.hpp>
 #include <l2s/edge_filter.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
@@ -59,7 +60,7 @@ struct FrameReport {
 };
 
 /// The facade: one per rig and calibration run (see thread safety above).
-class Calibrator {
+class L2S_EXPORT Calibrator {
  public:
   /// Every stage's parameters in one place (loaded from / saved to YAML by
   /// io::load_calibrator_params / io::save_calibrator_params).

@@ -4,6 +4,7 @@
 // (paper Sec. III-B, Sobel threshold tau_sobel; Sec. III-C, line removal).
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -13,7 +14,7 @@
 
 namespace l2s {
 
-class EdgeFilter {
+class L2S_EXPORT EdgeFilter {
  public:
   /// How the 3x3 Sobel responses gx, gy (cv::Sobel on the 8-bit gray image,
   /// each in [-1020, 1020]) become one 8-bit-like magnitude in [0, 255].

@@ -4,6 +4,7 @@
 // every stage produced: the answer to "the board is not detected".
 
 #include <l2s/calibrator.hpp>
+#include <l2s/export.hpp>
 
 #include <Eigen/Geometry>
 #include <optional>
@@ -52,22 +53,22 @@ struct CameraInspection {
 
 /// Runs the lidar branch on one sweep and keeps every stage's result.
 /// Throws ParamError for invalid params or target (as the Calibrator does).
-LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
+L2S_EXPORT LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params);
 
 /// Runs the camera branch on one rectified pair and keeps every stage's result.
 /// Throws ParamError for invalid params, target or cameras, InputError naming
 /// an image that cannot be used (as Calibrator::add).
-CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
+L2S_EXPORT CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
                                 const Target& target, const Calibrator::Params& params);
 
 /// A readable account of the branch, one stage per block: counts, the board
 /// plane and every rejected candidate with its reason, edge counts, circle
 /// candidates in board-plane coordinates, the labelled centres, and the
 /// thresholds each stage used (the Params fields to tune). Ends with a newline.
-std::string describe(const LidarInspection& inspection, const Calibrator::Params& params);
+L2S_EXPORT std::string describe(const LidarInspection& inspection, const Calibrator::Params& params);
 /// As above; `cameras` turn the disparity search range into depths.
-std::string describe(const CameraInspection& inspection, const Calibrator::Params& params,
+L2S_EXPORT std::string describe(const CameraInspection& inspection, const Calibrator::Params& params,
                      const StereoCamera& cameras);
 
 // Pictures of an inspection: l2s/viz/inspection_images.hpp (l2scalib::viz).

@@ -6,6 +6,7 @@
 // form an occupancy image: empty regions enclosed by the board are the holes,
 // and the board points bordering them are the rims.
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 
@@ -16,7 +17,7 @@
 
 namespace l2s {
 
-class OccupancyEdgeFilter {
+class L2S_EXPORT OccupancyEdgeFilter {
  public:
   struct Params {
     double cell_factor = 2.0;    ///< grid cell = this x the board points' mean spacing (from their density), > 0

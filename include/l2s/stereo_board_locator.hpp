@@ -7,6 +7,7 @@
 // each one's region, and only its depth band, at full resolution.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
 #include <l2s/stereo_matcher.hpp>
@@ -18,7 +19,7 @@
 
 namespace l2s {
 
-class StereoBoardLocator {
+class L2S_EXPORT StereoBoardLocator {
  public:
   struct Params {
     double coarse_width = 480.0;  ///< [px] the coarse pass matches the pair scaled to about this width, >= 160

@@ -15,6 +15,7 @@
 // Byte order: a PCLPointCloud2 whose is_bigendian differs from the host is
 // swapped while it is read; typed clouds are in host order by definition.
 
+#include <l2s/export.hpp>
 #include <l2s/types.hpp>
 
 #include <pcl/PCLPointCloud2.h>
@@ -46,7 +47,7 @@ struct PclRecords {
 /// InputError("PCL cloud", ...) when x, y or z is missing, a field it reads
 /// does not fit in point_step or has no number type, the sizes do not fit
 /// the data, or a ring value is not a laser index (0..65535).
-LidarCloud from_pcl_records(const PclRecords& records);
+L2S_PCL_EXPORT LidarCloud from_pcl_records(const PclRecords& records);
 
 /// Writes `cloud` into `count` records of `point_step` bytes at `data` (host
 /// byte order): x, y, z, and intensity and ring when both the cloud and the
@@ -56,18 +57,18 @@ LidarCloud from_pcl_records(const PclRecords& records);
 /// field does not fit in point_step, or `count` differs from the cloud's size;
 /// InputError("LidarCloud", ...) when intensity or ring has another length
 /// than the points.
-void to_pcl_records(const LidarCloud& cloud, const std::vector<pcl::PCLPointField>& fields,
+L2S_PCL_EXPORT void to_pcl_records(const LidarCloud& cloud, const std::vector<pcl::PCLPointField>& fields,
                                    std::uint8_t* data, std::size_t count, std::size_t point_step);
 
 /// Converts a cloud in PCL's generic form (any fields, organised or not,
 /// either byte order). Throws as from_pcl_records.
-LidarCloud from_pcl(const pcl::PCLPointCloud2& cloud);
+L2S_PCL_EXPORT LidarCloud from_pcl(const pcl::PCLPointCloud2& cloud);
 
 /// A PCLPointCloud2 of one row: x y z as FLOAT32, then intensity (FLOAT32)
 /// and ring (UINT16) when the cloud has them; host byte order; is_dense when
 /// every point is finite. Throws InputError("LidarCloud", ...) when intensity
 /// or ring has another length than the points.
-pcl::PCLPointCloud2 to_pcl_cloud2(const LidarCloud& cloud);
+L2S_PCL_EXPORT pcl::PCLPointCloud2 to_pcl_cloud2(const LidarCloud& cloud);
 
 /// Converts a typed PCL cloud (pcl::PointXYZ, pcl::PointXYZI, a driver's
 /// PointXYZIR, ...) without an intermediate copy. A cloud whose width *

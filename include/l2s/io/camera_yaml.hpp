@@ -3,6 +3,7 @@
 // camera_calibration tool.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 
 #include <string>
 
@@ -14,15 +15,15 @@ namespace l2s::io {
 /// projection_matrix with fx, fy > 0. Optional: camera_name, distortion_model,
 /// distortion_coefficients (any length, also 0), rectification_matrix
 /// (default identity) and camera_matrix (default: the left 3x3 block of P).
-CameraInfo read_camera_info(const std::string& path);
+L2S_EXPORT CameraInfo read_camera_info(const std::string& path);
 
 /// Writes a camera_info YAML atomically.
-void write_camera_info(const std::string& path, const CameraInfo& camera);
+L2S_EXPORT void write_camera_info(const std::string& path, const CameraInfo& camera);
 
 /// Reads left.yaml and right.yaml of a dataset folder and checks that the
 /// pair is rectified: same image size; fx, fy, cy equal within 1e-3 px; left
 /// |P[0][3]| below 1e-3 * fx; baseline -P_right[0][3] / fx_right > 0. The
 /// FileError names the file that breaks the rule.
-StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path);
+L2S_EXPORT StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path);
 
 }  // namespace l2s::io

@@ -2,6 +2,7 @@
 // PCD v0.7 point clouds (ascii, binary and binary_compressed), read into and
 // written from a LidarCloud: x y z, and intensity and ring when present.
 
+#include <l2s/export.hpp>
 #include <l2s/types.hpp>
 
 #include <string>
@@ -16,12 +17,12 @@ enum class PcdEncoding { Ascii, Binary, BinaryCompressed };
 /// row by row; NaN points are kept. Throws FileError naming the file and the
 /// problem (bad header, no x/y/z, truncated or corrupt data, POINTS !=
 /// WIDTH * HEIGHT); sizes are checked against the file before allocating.
-LidarCloud read_pcd(const std::string& path);
+L2S_EXPORT LidarCloud read_pcd(const std::string& path);
 
 /// Writes x y z [intensity] [ring] as float32/float32/uint16, one row
 /// (WIDTH = N, HEIGHT = 1), atomically; the same cloud always gives the same
 /// bytes. Throws ParamError when intensity or ring has a size other than N.
-void write_pcd(const std::string& path, const LidarCloud& cloud,
+L2S_EXPORT void write_pcd(const std::string& path, const LidarCloud& cloud,
                PcdEncoding encoding = PcdEncoding::Binary);
 
 }  // namespace l2s::io

@@ -2,11 +2,12 @@
 // Recovers the laser index of each point from its elevation angle, for sweeps
 // stored without a `ring` field.
 
+#include <l2s/export.hpp>
 #include <l2s/types.hpp>
 
 namespace l2s::io {
 
-struct RingRecoveryParams {
+struct L2S_EXPORT RingRecoveryParams {
   /// [rad] a gap between sorted elevations larger than this starts a new ring;
   /// must be below the smallest beam spacing (HDL-64E: 0.33 deg) and above the
   /// elevation jitter of one beam. > 0.
@@ -29,6 +30,6 @@ struct RingRecoveryParams {
 /// (highest index + 1, counting skipped beams; 0 when no point is valid).
 /// Elevations are taken from the sensor origin, so sensors whose lasers sit far
 /// apart vertically (HDL-64E) blur rings at very short range.
-int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params = {});
+L2S_EXPORT int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params = {});
 
 }  // namespace l2s::io
