@@ -16,6 +16,7 @@
 #include <l2s/center_accumulator.hpp>
 #include <l2s/circle_finder.hpp>
 #include <l2s/discontinuity_filter.hpp>
+#include <l2s/occupancy_edge_filter.hpp>
 #include <l2s/edge_filter.hpp>
 #include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
@@ -69,6 +70,8 @@ class L2S_EXPORT Calibrator {
     PassThroughFilter::Params lidar_pass_through;
     PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
     DiscontinuityFilter::Params discontinuity;
+    OccupancyEdgeFilter::Params occupancy;  ///< hole edges of ring-free (accumulated) clouds
+    int ring_free_frames = 20;  ///< ring-free lidars: sweeps of the static board accumulated into one detection (2 s at 10 Hz), >= 1
     CircleFinder::Params lidar_circles;
     BoardVerifier::Params lidar_verifier;  ///< which board-sized plane is the board (holes seen through, outline clear)
     // Camera branch: stereo, pass-through, plane, Sobel edges, circles, rim refinement.
@@ -119,12 +122,15 @@ class L2S_EXPORT Calibrator {
   Calibrator& operator=(Calibrator&&) noexcept;
 
   /// Runs one frame through both branches and accumulates what they found.
-  /// A cloud without `ring` gets rings from elevation angles. Bad sweeps
-  /// (empty, NaN, no board, ring or intensity of another length than the
-  /// points) are reported in the frame's lidar branch, never thrown. Images
-  /// that cannot be used throw InputError naming the image ("left image: ...")
-  /// before any work starts: empty, not 1 or 3 channels, pixels that do not
-  /// fill the image, or a size other than the cameras'.
+  /// A cloud without `ring` gets rings from elevation angles; a ring-free
+  /// cloud (non-repetitive scan) is accumulated with the next ones, and every
+  /// ring_free_frames sweeps give one lidar detection (the frame that
+  /// completes the window reports it; the others report "accumulating").
+  /// Bad sweeps (empty, NaN, no board, ring or intensity of another length
+  /// than the points) are reported in the frame's lidar branch, never thrown.
+  /// Images that cannot be used throw InputError naming the image ("left
+  /// image: ...") before any work starts: empty, not 1 or 3 channels, pixels
+  /// that do not fill the image, or a size other than the cameras'.
   FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,
                   const std::string& id = "");
 

@@ -5,6 +5,7 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/export.hpp>
+#include <l2s/stereo_rectifier.hpp>
 
 #include <Eigen/Geometry>
 #include <optional>
@@ -17,20 +18,33 @@ namespace l2s {
 struct LidarInspection {
   BranchReport report;  ///< what Calibrator::add reports for this sweep
   std::optional<PassThroughFilter::Result> pass_through;  ///< indices into the input sweep
-  LidarCloud cloud;  ///< the sweep after pass-through, rings filled: what the later stages index
+  bool ring_free = false;  ///< no ring structure: hole edges from the board's occupancy, not ring discontinuities
+  LidarCloud cloud;  ///< the sweep after pass-through, rings filled (ring-free: none): what the later stages index
   std::optional<PlaneSegmenter::Result> plane;  ///< every candidate; inliers index `cloud`
   std::vector<BoardHypothesis> hypotheses;       ///< board-sized planes tried, in order, and their fate
   /// The stages run on the chosen hypothesis (or, when none was chosen, on the
   /// first one tried: the most board-like plane).
-  std::optional<DiscontinuityFilter::Result> discontinuities;  ///< sources index `cloud`
+  std::optional<DiscontinuityFilter::Result> discontinuities;  ///< ring lidars; sources index `cloud`
+  std::optional<OccupancyEdgeFilter::Result> occupancy;        ///< ring-free clouds
   std::optional<CircleFinder::Result> circles;
   /// The plane candidate those stages ran on (index into plane->candidates), -1 when none.
   int candidate = -1;
 };
 
+/// Raw images as the camera branch saw them: rectified, with their cameras.
+struct RectifiedView {
+  Image left;
+  Image right;
+  StereoCamera cameras;  ///< the rectified pair
+  Eigen::Matrix3d R_rect_camera = Eigen::Matrix3d::Identity();  ///< p_rect = R * p_camera
+};
+
 /// Every stage of the camera branch for one stereo pair (see LidarInspection).
 struct CameraInspection {
-  BranchReport report;  ///< what Calibrator::add reports for this pair
+  BranchReport report;  ///< what Calibrator::add reports for this pair (centres in the camera frame of DATASET.md)
+  /// Raw images only: the rectified pair every later stage (and every pixel
+  /// and point below: the rectified frame) refers to.
+  std::optional<RectifiedView> rectified;
   std::optional<StereoBoardLocator::Result> located;  ///< the coarse pass and its regions (locate_board)
   /// Full-resolution matching: the whole frame (locate_board off), or the
   /// region of the hypothesis shown below.
@@ -56,9 +70,15 @@ struct CameraInspection {
 L2S_EXPORT LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params);
 
-/// Runs the camera branch on one rectified pair and keeps every stage's result.
-/// Throws ParamError for invalid params, target or cameras, InputError naming
-/// an image that cannot be used (as Calibrator::add).
+/// As above for a ring-free lidar: the sweeps (of a static board) are
+/// accumulated into one cloud, as the Calibrator does for ring_free_frames sweeps.
+L2S_EXPORT LidarInspection inspect_lidar(const std::vector<LidarCloud>& sweeps, const Target& target,
+                                         const Calibrator::Params& params);
+
+/// Runs the camera branch on one pair (raw images are rectified first, as
+/// `cameras.images` says) and keeps every stage's result. Throws ParamError
+/// for invalid params, target or cameras, InputError naming an image that
+/// cannot be used (as Calibrator::add).
 L2S_EXPORT CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
                                 const Target& target, const Calibrator::Params& params);
 

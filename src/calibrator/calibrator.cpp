@@ -28,11 +28,36 @@ BranchReport timed(Branch&& branch) {
 
 struct Calibrator::Impl {
   StereoCamera cameras;
+  detail::CameraSetup camera_setup;  // rectified cameras (and the rectifier for raw images)
   Target target;
   Params params;
   CenterAccumulator lidar_centers;
   CenterAccumulator camera_centers;
   std::vector<FrameReport> frames;
+  std::vector<LidarCloud> ring_free_window;  // ring-free sweeps waiting for a detection (pass-through applied)
+
+  // The lidar branch of one sweep: at once for a ring lidar; for a ring-free
+  // one, when ring_free_frames sweeps of the static board are together.
+  BranchReport lidar_branch(const LidarCloud& sweep) {
+    if (!detail::is_ring_free(sweep))
+      return timed([&] { return detail::run_lidar_branch(sweep, target, params); });
+    const auto start = std::chrono::steady_clock::now();
+    ring_free_window.push_back(detail::accumulate_ring_free({&sweep}, params));
+    BranchReport report;
+    const auto count = static_cast<int>(ring_free_window.size());
+    if (count < params.ring_free_frames) {
+      report.failed_stage = "accumulating";
+      report.reason = "ring-free sweep " + std::to_string(count) + " of " + std::to_string(params.ring_free_frames) +
+                      " accumulated";
+    } else {
+      std::vector<const LidarCloud*> window;
+      for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
+      report = detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
+      ring_free_window.clear();
+    }
+    report.milliseconds = milliseconds_since(start);
+    return report;
+  }
 
   // Names the frame, accumulates what its branches found, keeps its report.
   FrameReport record(FrameReport report, const std::string& id) {
@@ -45,6 +70,7 @@ struct Calibrator::Impl {
 
   Impl(StereoCamera c, Target t, Params p)
       : cameras(std::move(c)),
+        camera_setup(cameras),
         target(t),
         params(std::move(p)),
         lidar_centers(params.accumulator),
@@ -65,16 +91,14 @@ Calibrator& Calibrator::operator=(Calibrator&&) noexcept = default;
 FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Image& right,
                             const std::string& id) {
   const auto start = std::chrono::steady_clock::now();
-  const Impl& impl = *impl_;
+  Impl& impl = *impl_;
   // Here, not in the camera branch: an exception must leave before the lidar
   // branch runs and from the caller's thread.
   detail::check_stereo_images(left, right, impl.cameras);
-  const auto lidar_branch = [&] {
-    return timed([&] { return detail::run_lidar_branch(lidar, impl.target, impl.params); });
-  };
+  const auto lidar_branch = [&] { return impl.lidar_branch(lidar); };
   const auto camera_branch = [&] {
     return timed([&] {
-      return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params);
+      return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params);
     });
   };
 
@@ -95,12 +119,12 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
   const Impl& impl = *impl_;
   detail::check_stereo_images(left, right, impl.cameras);
-  return timed([&] { return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params); });
+  return timed([&] { return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params); });
 }
 
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
-  report.lidar = timed([&] { return detail::run_lidar_branch(lidar, impl_->target, impl_->params); });
+  report.lidar = impl_->lidar_branch(lidar);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
   return impl_->record(std::move(report), id);
@@ -158,6 +182,7 @@ void Calibrator::reset() {
   impl_->lidar_centers.reset();
   impl_->camera_centers.reset();
   impl_->frames.clear();
+  impl_->ring_free_window.clear();
 }
 
 const Calibrator::Params& Calibrator::params() const { return impl_->params; }
