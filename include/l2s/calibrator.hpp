@@ -125,7 +125,8 @@ class L2S_EXPORT Calibrator {
   /// A cloud without `ring` gets rings from elevation angles; a ring-free
   /// cloud (non-repetitive scan) is accumulated with the next ones, and every
   /// ring_free_frames sweeps give one lidar detection (the frame that
-  /// completes the window reports it; the others report "accumulating").
+  /// completes the window reports it; the others report "accumulating"; a
+  /// window left incomplete is detected as it stands by result()).
   /// Bad sweeps (empty, NaN, no board, ring or intensity of another length
   /// than the points) are reported in the frame's lidar branch, never thrown.
   /// Images that cannot be used throw InputError naming the image ("left

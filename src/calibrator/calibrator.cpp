@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <future>
+#include <optional>
 #include <sstream>
 
 namespace l2s {
@@ -57,6 +58,16 @@ struct Calibrator::Impl {
     }
     report.milliseconds = milliseconds_since(start);
     return report;
+  }
+
+  // A ring-free window still short of ring_free_frames when the result is
+  // asked for: its sweeps are data too (a recording of 1 s from a 2 s window),
+  // so it is detected as it stands. Nothing is changed: more sweeps may follow.
+  std::optional<BranchReport> partial_ring_free_window() const {
+    if (ring_free_window.empty()) return std::nullopt;
+    std::vector<const LidarCloud*> window;
+    for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
+    return detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
   }
 
   // Names the frame, accumulates what its branches found, keeps its report.
@@ -145,6 +156,11 @@ Calibrator::Result Calibrator::result() const {
     result.reason = "no frames added";
     return result;
   }
+  CenterAccumulator lidar_centers = impl.lidar_centers;
+  if (const auto partial = impl.partial_ring_free_window(); partial && partial->found) {
+    lidar_centers.add(partial->centers);
+    ++result.lidar_frames;
+  }
   const int needed = impl.params.min_frames;
   if (result.lidar_frames < needed || result.camera_frames < needed) {
     std::ostringstream reason;
@@ -157,7 +173,7 @@ Calibrator::Result Calibrator::result() const {
     return result;
   }
 
-  result.lidar_centroids = impl.lidar_centers.estimate();
+  result.lidar_centroids = lidar_centers.estimate();
   result.camera_centroids = impl.camera_centers.estimate();
   if (!result.lidar_centroids.found) {
     result.reason = "lidar centres do not cluster: " + result.lidar_centroids.reason;

@@ -40,6 +40,8 @@ std::string format_size(double a, double b) {
 }
 
 /// Empty when the patch has the board's size, else why not.
+constexpr const char* kLargerThanTheBoard = "larger than the board";
+
 std::string board_mismatch(const detail::Patch& patch, std::size_t patch_points, const Target& target,
                            const PlaneSegmenter::Params& params) {
   const double board_long = std::max(target.board_width, target.board_height);
@@ -48,8 +50,8 @@ std::string board_mismatch(const detail::Patch& patch, std::size_t patch_points,
   const std::string seen = "patch " + format_size(patch.extent_long, patch.extent_short) + ", board " +
                            format_size(board_long, board_short);
   if (patch_points < params.min_support) return "patch has too few points (" + std::to_string(patch_points) + ")";
-  if (patch.extent_long > board_long * (1.0 + tol)) return "larger than the board (" + seen + ")";
-  if (patch.extent_short > board_short * (1.0 + tol)) return "larger than the board (" + seen + ")";
+  if (patch.extent_long > board_long * (1.0 + tol)) return kLargerThanTheBoard + (" (" + seen + ")");
+  if (patch.extent_short > board_short * (1.0 + tol)) return kLargerThanTheBoard + (" (" + seen + ")");
   if (patch.extent_long < board_long * params.min_length_fraction) return "smaller than the board (" + seen + ")";
   // Lidar rings sample the height only at ring elevations: a loose lower bound.
   if (patch.extent_short < board_short * params.min_height_fraction)
@@ -230,6 +232,12 @@ Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& point
     return e;
   }
   c.reason = board_mismatch(e.patch, c.patch_points, target, params);
+  if (params.keep_oversized && c.reason.rfind(kLargerThanTheBoard, 0) == 0) {
+    c.oversized = true;
+    c.isolation = around.isolation();
+    refit(e, points, finite, grid, patch_consensus, params);
+    return e;
+  }
   if (!c.reason.empty()) return e;
   c.isolation = around.isolation();
   c.prior = board_prior(c, target, params.size_tolerance);
@@ -245,6 +253,9 @@ void rank(PlaneSegmenter::Result& result) {
   std::stable_sort(result.ranking.begin(), result.ranking.end(), [&](int a, int b) {
     return result.candidates[a].prior > result.candidates[b].prior;
   });
+  // Last resorts, in extraction order (most support first).
+  for (std::size_t i = 0; i < result.candidates.size(); ++i)
+    if (result.candidates[i].oversized) result.ranking.push_back(static_cast<int>(i));
   if (!result.ranking.empty()) {
     const PlaneCandidate& best = result.candidates[result.ranking.front()];
     result.found = true;
