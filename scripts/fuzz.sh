@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # libFuzzer targets (fuzz/): build them in build-asan/ (see sanitize.sh), then
-#   scripts/fuzz.sh replay            run every target over its corpus once
+#   scripts/fuzz.sh replay            run every target over its seed corpus once
 #   scripts/fuzz.sh run [SECONDS]     fuzz each target in turn (default 30 s each)
 #   scripts/fuzz.sh run SECONDS NAME  fuzz one target (e.g. pcd_binary_compressed)
+#   scripts/fuzz.sh options           print the cmake options of build-asan/
 # New inputs go to build-asan/fuzz-corpus/<target>/ (the seeds in fuzz/corpus
 # are read, never changed); crashes to build-asan/fuzz-findings/<target>/.
 # One target at a time: libFuzzer uses one core per job.
@@ -22,10 +23,17 @@ dictionary() {
   esac
 }
 
+# The fuzz targets link the core library only: no simulator, viz, PCL or tools.
+options=(-DL2SCALIB_BUILD_FUZZERS=ON -DL2SCALIB_BUILD_SIM=OFF -DL2SCALIB_BUILD_VIZ=OFF
+         -DL2SCALIB_BUILD_PCL=OFF -DL2SCALIB_BUILD_TOOLS=OFF)
+if [ "$mode" = options ]; then
+  echo "${options[@]}"
+  exit 0
+fi
 if [ ! -d "$build" ]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DL2SCALIB_BUILD_SHARED=OFF \
-    -DL2SCALIB_SANITIZE="address;undefined" -DL2SCALIB_BUILD_FUZZERS=ON \
-    -DL2SCALIB_BUILD_BENCHMARKS=OFF -DL2SCALIB_BUILD_EXAMPLES=OFF >/dev/null
+    -DL2SCALIB_SANITIZE="address;undefined" -DL2SCALIB_BUILD_BENCHMARKS=OFF -DL2SCALIB_BUILD_EXAMPLES=OFF \
+    "${options[@]}" >/dev/null
 fi
 cmake --build "$build" -j "${L2S_JOBS:-$(nproc)}" --target fuzzers
 

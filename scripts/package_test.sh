@@ -3,12 +3,14 @@
 # with a tiny consumer (tests/package) that is built and run:
 #   shared      find_package(l2scalib) of the shared install; the consumer
 #               needs libl2scalib only (OpenCV and yaml-cpp stay inside it)
-#   static      find_package(l2scalib) of a static install (build-static/);
-#               the consumer needs no libl2scalib at run time
+#   static      find_package(l2scalib) of a static install of the core
+#               library alone (build-static/); the consumer needs no
+#               libl2scalib at run time
 #   components  find_package(l2scalib COMPONENTS sim pcl), and the examples
 #               built outside (03 feeds pcl::PointCloud sweeps to the Calibrator)
-#   subproject  add_subdirectory of the source tree, which must leave its
-#               parent's settings alone and build no tests, tools or examples
+#   subproject  add_subdirectory of the source tree (the core alone), which
+#               must leave its parent's settings alone and build no tests,
+#               tools or examples
 # Usage: scripts/package_test.sh [SHARED_BUILD_DIR]   (default build/, built already)
 # Build folders sit beside build/ so ccache finds their objects (same depth).
 set -euo pipefail
@@ -44,12 +46,15 @@ if needed build-consumer-shared/consumer | grep -Eq 'opencv|yaml-cpp'; then
 fi
 
 echo "package: static"
+# The core library only: the components' packaging is checked on the shared
+# install, and each component more would be another cold compile in CI.
 cmake -S . -B build-static -DCMAKE_BUILD_TYPE=Release -DL2SCALIB_BUILD_SHARED=OFF \
   -DL2SCALIB_BUILD_TESTS=OFF -DL2SCALIB_BUILD_BENCHMARKS=OFF -DL2SCALIB_BUILD_EXAMPLES=OFF \
-  -DL2SCALIB_BUILD_TOOLS=OFF >/dev/null
+  -DL2SCALIB_BUILD_TOOLS=OFF -DL2SCALIB_BUILD_SIM=OFF -DL2SCALIB_BUILD_VIZ=OFF \
+  -DL2SCALIB_BUILD_PCL=OFF >/dev/null
 cmake --build build-static -j "$jobs" >/dev/null
 cmake --install build-static --prefix "$work/static" >/dev/null
-consumer static -DCMAKE_PREFIX_PATH="$work/static" -DL2S_COMPONENTS="sim"
+consumer static -DCMAKE_PREFIX_PATH="$work/static"
 if needed build-consumer-static/consumer | grep -q l2scalib; then
   echo "package: the static consumer still loads a shared l2scalib" >&2
   exit 1
@@ -64,7 +69,7 @@ cmake --build build-examples-outside -j "$jobs" >/dev/null
   { echo "package: example 03 (pcl component) was not built" >&2; exit 1; }
 
 echo "package: subproject"
-consumer subproject -DL2S_CONSUME=subproject -DL2S_SOURCE_DIR="$root" -DL2S_COMPONENTS="sim" \
+consumer subproject -DL2S_CONSUME=subproject -DL2S_SOURCE_DIR="$root" \
   -DL2S_SUBPROJECT_BINARY_DIR="$root/build-consumer-subproject-l2s"
 
 # The prefix of the shared install, for callers that go on using it.

@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Sanitizer runs (clang, Debian's compiler-rt):
-#   asan  the unit tests under AddressSanitizer + UndefinedBehaviorSanitizer,
-#         except the slow end-to-end run (ctest -LE slow). The build is static
-#         and carries libFuzzer coverage, so the fuzz targets (scripts/fuzz.sh)
-#         build in the same folder: build-asan/.
-#   tsan  the concurrency tests (ctest -L threads) under ThreadSanitizer: build-tsan/.
+#   asan  the unit tests of the core library (every test that needs no
+#         simulator, viz or PCL) under AddressSanitizer +
+#         UndefinedBehaviorSanitizer. The build holds the core library, those
+#         tests and the fuzz targets only (scripts/fuzz.sh builds in the same
+#         folder, build-asan/): static, with libFuzzer coverage. The simulator
+#         and the end-to-end tests stay out: a cold compile of them would
+#         double the step, and they run the same library code.
+#   tsan  the concurrency tests (ctest -L threads) under ThreadSanitizer:
+#         build-tsan/, the core, the simulator and concurrency_test only.
 # Usage: scripts/sanitize.sh [asan|tsan|all]   (default all). Any report fails the run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,14 +30,14 @@ configure() {  # configure BUILD_DIR SANITIZERS [cmake args...]
 }
 
 if [ "$what" = asan ] || [ "$what" = all ]; then
-  configure build-asan "address;undefined" -DL2SCALIB_BUILD_FUZZERS=ON
+  configure build-asan "address;undefined" $(scripts/fuzz.sh options)
   cmake --build build-asan -j "$jobs"
   (cd build-asan && ctest -LE slow --output-on-failure -j "$jobs")
   echo "sanitize: unit tests clean under ASan+UBSan"
 fi
 
 if [ "$what" = tsan ] || [ "$what" = all ]; then
-  configure build-tsan thread -DL2SCALIB_BUILD_TOOLS=OFF -DL2SCALIB_BUILD_PCL=OFF
+  configure build-tsan thread -DL2SCALIB_BUILD_TOOLS=OFF -DL2SCALIB_BUILD_PCL=OFF -DL2SCALIB_BUILD_VIZ=OFF
   cmake --build build-tsan -j "$jobs" --target concurrency_test
   (cd build-tsan && ctest -L threads --output-on-failure)
   echo "sanitize: concurrency tests clean under TSan"
