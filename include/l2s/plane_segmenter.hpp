@@ -50,6 +50,12 @@ class L2S_EXPORT PlaneSegmenter {
     double sample_radius = 0.5;        ///< [m] 2nd/3rd sample points come from this neighbourhood, > 0
     double patch_gap_horizontal = 0.3;  ///< [m] in-plane horizontal gap bridged by a patch (> hole diameter), > 0
     double patch_gap_vertical = 0.25;  ///< [m] patch grid cell height: rows this close always join, rows 2x apart never (so the ground 0.5 m below stays apart); >= ring spacing at the board (16 beams: to 7 m), > 0
+    /// Level surfaces (within 30 deg of horizontal: floor, ceiling, table)
+    /// taken out before the board is looked for, up to this many, each
+    /// holding at least a tenth of the samples. A dense stereo floor is
+    /// otherwise cut into slanted planes with what stands on it, candidates
+    /// enough to crowd a small board out. 0..4.
+    int remove_level_planes = 0;
     double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height (the patch may exceed them by this), 0..1
     /// Patches larger than the board are ranked after every board-sized one
     /// instead of dropped: a coarse stereo cloud merges a board with what

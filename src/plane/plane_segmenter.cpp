@@ -159,6 +159,29 @@ Plane refit_hypothesis(const Plane& hypothesis, const Samples& samples, const Pl
   return detail::facing_origin(plane);
 }
 
+/// Drops the samples of up to `count` level planes (see Params::remove_level_planes).
+void remove_level_planes(Samples& s, int count, const detail::VerticalPlaneRansacParams& vertical,
+                         const Thresholds& thresholds, std::mt19937_64& rng) {
+  constexpr double kLevelCos = 0.866;        // within 30 deg of horizontal
+  constexpr double kMinShare = 0.1;          // of the samples left
+  detail::VerticalPlaneRansacParams level = vertical;
+  level.max_sin_axis = 1.0;
+  level.min_cos_axis = kLevelCos;
+  for (int k = 0; k < count && s.points.size() >= 3; ++k) {
+    const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(s.points, level, rng);
+    if (!found.found || static_cast<double>(found.consensus) < kMinShare * static_cast<double>(s.points.size()))
+      return;
+    Samples rest;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      if (std::abs(found.plane.signedDistance(s.points[i])) <= thresholds.inliers(s.points[i])) continue;
+      rest.points.push_back(s.points[i]);
+      rest.tolerance.push_back(s.tolerance[i]);
+    }
+    s.points.swap(rest.points);
+    s.tolerance.swap(rest.tolerance);
+  }
+}
+
 /// One extracted plane: its patch and, when board-sized, its refit and inliers.
 struct Extraction {
   PlaneCandidate candidate;
@@ -288,6 +311,7 @@ void PlaneSegmenter::Params::validate() const {
   if (max_candidates < 1) throw ParamError("max_candidates", "must be >= 1");
   if (min_support < 3) throw ParamError("min_support", "must be >= 3");
   if (max_samples < 100) throw ParamError("max_samples", "must be >= 100");
+  if (remove_level_planes < 0 || remove_level_planes > 4) throw ParamError("remove_level_planes", "must be 0..4");
   if (!(size_tolerance >= 0.0 && size_tolerance < 1.0)) throw ParamError("size_tolerance", "must be in [0, 1)");
   if (!(min_height_fraction >= 0.0 && min_height_fraction <= 1.0))
     throw ParamError("min_height_fraction", "must be in [0, 1]");
@@ -306,6 +330,7 @@ PlaneSegmenter::Params PlaneSegmenter::Params::stereo() {
   params.patch_gap_horizontal = 0.1;        // dense cloud: holes need not be bridged by one ring
   params.patch_gap_vertical = 0.1;
   params.max_candidates = 6;  // each costs a pass over a dense cloud
+  params.remove_level_planes = 2;
   return params;
 }
 
@@ -336,6 +361,7 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
   ransac.sample_radius = params_.sample_radius;
   ransac.tolerance = &s.tolerance;
 
+  remove_level_planes(s, params_.remove_level_planes, ransac, thresholds, rng);
   for (int k = 0; k < params_.max_candidates && s.points.size() >= 3; ++k) {
     const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(s.points, ransac, rng);
     if (!found.found) break;
