@@ -3,8 +3,6 @@
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(yaml-cpp REQUIRED)
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
-# PCL: the tests cross-check our PCD reader against it. Only the modules we use.
-find_package(PCL 1.10 REQUIRED COMPONENTS common io)
 find_package(Threads REQUIRED)
 
 # yaml-cpp 0.7 exports a plain `yaml-cpp` target, newer releases `yaml-cpp::yaml-cpp`.
@@ -14,9 +12,26 @@ else()
   set(L2S_YAML_TARGET yaml-cpp)
 endif()
 
-# PCL publishes variables rather than one target: attach them privately.
+# PCL: only the l2scalib::pcl component (and the tests and benchmarks that
+# compare our PCD code with PCL's) use it; the core library never does.
+string(TOUPPER "${L2SCALIB_BUILD_PCL}" l2s_build_pcl)
+if(l2s_build_pcl STREQUAL "ON")
+  find_package(PCL 1.10 REQUIRED COMPONENTS common io)
+elseif(l2s_build_pcl STREQUAL "AUTO")
+  find_package(PCL 1.10 QUIET COMPONENTS common io)
+  if(NOT PCL_FOUND)
+    message(STATUS "l2scalib: PCL not found, l2scalib::pcl is not built (L2SCALIB_BUILD_PCL=ON to require it)")
+  endif()
+elseif(NOT l2s_build_pcl STREQUAL "OFF")
+  message(FATAL_ERROR "L2SCALIB_BUILD_PCL must be AUTO, ON or OFF, not '${L2SCALIB_BUILD_PCL}'")
+endif()
+if(PCL_FOUND AND NOT l2s_build_pcl STREQUAL "OFF")
+  set(L2SCALIB_WITH_PCL ON)
+else()
+  set(L2SCALIB_WITH_PCL OFF)
+endif()
+
+# For tests and benchmarks that call PCL's own readers: attach PCL privately.
 function(l2s_link_pcl target)
-  target_include_directories(${target} SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
-  target_link_libraries(${target} PRIVATE ${PCL_LIBRARIES})
-  target_compile_definitions(${target} PRIVATE ${PCL_DEFINITIONS})
+  target_link_libraries(${target} PRIVATE pcl_common pcl_io)
 endfunction()

@@ -178,11 +178,17 @@ TEST(CalibratorRobustness, ARingFreeRecordingShorterThanOneWindowStillCalibrates
   EXPECT_LT(error.rotation, 0.5 * M_PI / 180.0);
 }
 
-TEST(CalibratorRobustness, ImagesOfTheWrongSizeThrowParamError) {
+TEST(CalibratorRobustness, ImagesOfTheWrongSizeThrowInputErrorNamingTheImage) {
   auto calibrator = make_calibrator();
   const auto frame = simulator().frame(0);
   const l2s::Image small(64, 48, 1, 0);
-  EXPECT_THROW(calibrator.add(frame.lidar, small, small), l2s::ParamError);
+  EXPECT_THROW(calibrator.add(frame.lidar, small, small), l2s::InputError);
+  try {
+    calibrator.add(frame.lidar, frame.left, small);
+    FAIL() << "expected InputError";
+  } catch (const l2s::InputError& error) {
+    EXPECT_EQ(error.input(), "right image");
+  }
 }
 
 }  // namespace

@@ -40,7 +40,8 @@ TEST(Calibrator, SharedCameraReportGivesTheSameResultAsAdd) {
 }
 
 TEST(Calibrator, LidarFromAnotherModelUsesTheSameCameraReport) {
-  // The suite's fast path: one simulator per lidar model, images from the first.
+  // The suite's fast path: one simulator per lidar model, images from the
+  // first, and one camera report shared by the Calibrators of every model.
   auto config = sim::SimulationConfig::paper(2, "vlp16");
   config.frames = 1;
   config.seed = 3;
@@ -50,8 +51,23 @@ TEST(Calibrator, LidarFromAnotherModelUsesTheSameCameraReport) {
   const sim::DatasetSimulator hdl32(config);
   const auto frame = vlp16.frame(0);
   const auto other = hdl32.frame(0);
-  EXPECT_TRUE(frame.left.pixels == other.left.pixels) << "images must not depend on the lidar model";
-  EXPECT_TRUE(hdl32.sweep(0).points == other.lidar.points);
+  ASSERT_TRUE(frame.left.pixels == other.left.pixels) << "images must not depend on the lidar model";
+  ASSERT_TRUE(frame.right.pixels == other.right.pixels);
+
+  const auto params = Calibrator::Params::preset("paper");
+  Calibrator from_vlp16(vlp16.cameras(), config.target, params);
+  const BranchReport camera = from_vlp16.camera_branch(frame.left, frame.right);
+  ASSERT_TRUE(camera.found) << camera.reason;
+  Calibrator shared(hdl32.cameras(), config.target, params);
+  Calibrator whole(hdl32.cameras(), config.target, params);
+  const FrameReport report = shared.add(other.lidar, camera);
+  const FrameReport expected = whole.add(other.lidar, other.left, other.right);
+  ASSERT_TRUE(report.lidar.found) << report.lidar.reason;
+  ASSERT_TRUE(expected.camera.found) << expected.camera.reason;
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_TRUE(report.camera.centers[k].isApprox(expected.camera.centers[k], 1e-12)) << "hole " << k;
+    EXPECT_TRUE(report.lidar.centers[k].isApprox(expected.lidar.centers[k], 1e-12)) << "hole " << k;
+  }
 }
 
 }  // namespace

@@ -126,9 +126,8 @@ TEST(DatasetWriter, WritesTheSameBytesTwice) {
 }
 
 TEST(DatasetWriter, OutputPassesCheckDatasetScript) {
-  const std::string script = L2S_SHARED_DIR "/tools/check_dataset.py";
-  if (!fs::exists("/usr/bin/python3") || !fs::exists(script))
-    GTEST_SKIP() << "needs /usr/bin/python3 and " << script;
+  L2S_NEED_DATASET_CHECKER();
+  const std::string script = test::dataset_checker();
   test::TempDir dir;
   const std::string folder = write_dataset(dir);
   const std::string command = "/usr/bin/python3 " + script + " " + folder + " --lidar-beams 16 > " +

@@ -47,8 +47,8 @@ TEST(RingFreeDataset, WritesNoRingAndPassesTheChecker) {
   const LidarCloud cloud = io::read_pcd(folder + "/lidar/000000.pcd");
   EXPECT_FALSE(cloud.has_ring());
   EXPECT_GT(cloud.size(), 10000u);
-  const std::string script = L2S_SHARED_DIR "/tools/check_dataset.py";
-  if (!fs::exists("/usr/bin/python3") || !fs::exists(script)) GTEST_SKIP() << "needs " << script;
+  L2S_NEED_DATASET_CHECKER();
+  const std::string script = test::dataset_checker();
   const std::string command = "/usr/bin/python3 " + script + " " + folder + " > " + dir.file("check.log") + " 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << test::read_bytes(dir.file("check.log"));
 }

@@ -87,11 +87,10 @@ TEST(SimulateDataset, FollowsTheDatasetContract) {
   // scene.yaml records the transform of the board too.
   EXPECT_NO_THROW(io::read_transform(folder + "/scene.yaml", "T_cambody_board"));
 
-  const std::string checker = std::string(L2S_SHARED_DIR) + "/tools/check_dataset.py";
-  if (fs::exists(checker) && std::system("python3 -c 'import yaml' >/dev/null 2>&1") == 0) {
-    const std::string command = "python3 " + checker + " " + folder + " --lidar-beams 64 >/dev/null";
-    EXPECT_EQ(std::system(command.c_str()), 0) << command;
-  }
+  L2S_NEED_DATASET_CHECKER();
+  const std::string command =
+      "/usr/bin/python3 " + test::dataset_checker() + " " + folder + " --lidar-beams 64 >/dev/null";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
 }
 
 TEST(DatasetSimulator, PaperSettingKeepsItsBytes) {

@@ -124,7 +124,7 @@ TEST(StereoMatcher, RejectsInvalidParamsAndMismatchedImages) {
     EXPECT_EQ(error.field(), "block_size");
   }
   const Image small(64, 48);
-  EXPECT_THROW(StereoMatcher().match(wall_pair().left, small, test::make_stereo_camera()), ParamError);
+  EXPECT_THROW(StereoMatcher().match(wall_pair().left, small, test::make_stereo_camera()), InputError);
 }
 
 }  // namespace

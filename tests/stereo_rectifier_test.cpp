@@ -179,11 +179,11 @@ TEST(CameraRectifier, RejectsWhatItCannotRectify) {
   try {
     rectifier.rectify(Image(kWidth + 1, kHeight));
     ADD_FAILURE() << "no error";
-  } catch (const ParamError& e) {
-    EXPECT_EQ(e.field(), "left image");
-    EXPECT_NE(std::string(e.what()).find("801x600, the camera is 800x600"), std::string::npos);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.input(), "left image");
+    EXPECT_NE(std::string(e.what()).find("801x600 px, but the left camera is 800x600 px"), std::string::npos);
   }
-  EXPECT_THROW(rectifier.rectify(Image()), ParamError);
+  EXPECT_THROW(rectifier.rectify(Image()), InputError);
 }
 
 // A raw pair: the physical right camera sits at the baseline along the
@@ -298,8 +298,8 @@ TEST(StereoRectifier, RejectsPairsOfDifferentSizesAndImagesOfTheWrongSize) {
   try {
     rectifier.rectify(Image(kWidth, kHeight), Image(kWidth, kHeight - 1));
     ADD_FAILURE() << "no error";
-  } catch (const ParamError& e) {
-    EXPECT_EQ(e.field(), "right image");
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.input(), "right image");
   }
 }
 

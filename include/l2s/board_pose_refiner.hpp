@@ -4,6 +4,7 @@
 // circles of each hole) with the image edges by robust Gauss-Newton.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -13,7 +14,7 @@
 
 namespace l2s {
 
-class BoardPoseRefiner {
+class L2S_EXPORT BoardPoseRefiner {
  public:
   struct Params {
     int samples_per_rim = 360;     ///< points on each rim circle (front and back); ~1 per px of rim at 3 m, 16..2000
@@ -59,7 +60,8 @@ class BoardPoseRefiner {
 
   /// `left`, `right`: rectified 8-bit images (gray or BGR); `T_camera_board`:
   /// initial pose, board frame as in target.hpp. Throws ParamError for an
-  /// invalid target or images that disagree with the cameras.
+  /// invalid target, InputError naming the image when one is unusable or its
+  /// size differs from the other's or its camera's.
   Result refine(const Image& left, const Image& right, const StereoCamera& camera,
                 const Target& target, const Eigen::Isometry3d& T_camera_board) const;
 

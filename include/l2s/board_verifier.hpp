@@ -7,6 +7,8 @@
 // (lidar returns behind the plane; stereo photo-consistency); BoardVerifier
 // judges it the same way for every sensor, and ranks the hypotheses that pass.
 
+#include <l2s/export.hpp>
+
 #include <array>
 #include <limits>
 #include <string>
@@ -28,7 +30,7 @@ struct BoardEvidence {
 };
 
 /// Judges the evidence of one board hypothesis.
-class BoardVerifier {
+class L2S_EXPORT BoardVerifier {
  public:
   struct Params {
     double hole_margin = 0.025;     ///< [m] band inside each rim left out of the hole samples (mixed returns, stereo smear, apparent shrink), >= 0

@@ -3,6 +3,12 @@
 // of the paper's pipeline (Sec. III), accumulates the hole centres and
 // registers them into T_lidar_camera. Frames are added one at a time, so a
 // calibration can run live; result() is available at any point.
+//
+// Thread safety: one Calibrator is not safe to share; add(), reset() and
+// result() of the same instance need one thread at a time (or a lock).
+// Separate instances share nothing and may run in parallel threads.
+// camera_branch() is const and may run concurrently with itself on one
+// instance (it reads only the cameras, target and params).
 
 #include <l2s/board_pose_refiner.hpp>
 #include <l2s/board_verifier.hpp>
@@ -12,6 +18,7 @@
 #include <l2s/discontinuity_filter.hpp>
 #include <l2s/occupancy_edge_filter.hpp>
 #include <l2s/edge_filter.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
@@ -53,7 +60,8 @@ struct FrameReport {
   bool used() const { return lidar.found && camera.found; }
 };
 
-class Calibrator {
+/// The facade: one per rig and calibration run (see thread safety above).
+class L2S_EXPORT Calibrator {
  public:
   /// Every stage's parameters in one place (loaded from / saved to YAML by
   /// io::load_calibrator_params / io::save_calibrator_params).
@@ -105,7 +113,9 @@ class Calibrator {
     double camera_ms = 0.0;  ///< [ms] total camera branch time
   };
 
-  /// Throws ParamError for invalid params or target.
+  /// Throws ParamError naming the field for invalid params, target or
+  /// cameras (image size or fx, fy not positive, P not finite, or a stereo
+  /// baseline -P_right[0][3] / fx_right that is not positive).
   Calibrator(StereoCamera cameras, Target target, Params params = Params::preset("default"));
   ~Calibrator();
   Calibrator(Calibrator&&) noexcept;
@@ -117,8 +127,11 @@ class Calibrator {
   /// ring_free_frames sweeps give one lidar detection (the frame that
   /// completes the window reports it; the others report "accumulating"; a
   /// window left incomplete is detected as it stands by result()).
-  /// Bad frames (empty, NaN, no board) are reported, never thrown; images
-  /// whose size differs from the cameras throw ParamError.
+  /// Bad sweeps (empty, NaN, no board, ring or intensity of another length
+  /// than the points) are reported in the frame's lidar branch, never thrown.
+  /// Images that cannot be used throw InputError naming the image ("left
+  /// image: ...") before any work starts: empty, not 1 or 3 channels, pixels
+  /// that do not fill the image, or a size other than the cameras'.
   FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,
                   const std::string& id = "");
 

@@ -1,6 +1,8 @@
 #pragma once
 // Rectified pinhole cameras as ROS camera_info describes them.
 
+#include <l2s/export.hpp>
+
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -10,7 +12,7 @@ namespace l2s {
 /// One camera of a rectified stereo pair, with every field of a ROS
 /// camera_info YAML so that a file read and written again keeps its content.
 /// Images are rectified: the projection matrix P is the model that counts.
-struct CameraInfo {
+struct L2S_EXPORT CameraInfo {
   std::string camera_name;
   int width = 0;   ///< [px]
   int height = 0;  ///< [px]

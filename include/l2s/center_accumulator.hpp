@@ -2,6 +2,7 @@
 // Accumulates the four hole centres over N frames, clusters them and returns
 // one centroid per hole (paper Sec. III-C, last paragraph).
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 
 #include <array>
@@ -10,7 +11,7 @@
 
 namespace l2s {
 
-class CenterAccumulator {
+class L2S_EXPORT CenterAccumulator {
  public:
   /// How a hole's cluster becomes one point.
   enum class Estimator {
@@ -60,6 +61,6 @@ class CenterAccumulator {
 };
 
 /// "TL", "TR", "BL", "BR".
-const char* hole_name(Hole hole);
+L2S_EXPORT const char* hole_name(Hole hole);
 
 }  // namespace l2s

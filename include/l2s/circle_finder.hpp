@@ -4,6 +4,7 @@
 // known hole spacing), optionally refined as one rigid pattern with the board's
 // thickness modelled.
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 
@@ -17,7 +18,7 @@
 namespace l2s {
 
 /// Finds and labels the four holes of the board among edge points.
-class CircleFinder {
+class L2S_EXPORT CircleFinder {
  public:
   struct Params {
     double inlier_threshold = 0.02;   ///< [m] | |q - c| - r | for a point to support a circle, > 0

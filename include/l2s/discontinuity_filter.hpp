@@ -9,6 +9,7 @@
 // between them, and every gap is classified (a hole crossed, a stray return
 // inside a hole, an occluder in front, or the board's outer border).
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -22,7 +23,7 @@
 namespace l2s {
 
 /// Finds the hole edges of the board along each lidar ring.
-class DiscontinuityFilter {
+class L2S_EXPORT DiscontinuityFilter {
  public:
   /// Where an edge point is placed.
   enum class EdgePlacement {

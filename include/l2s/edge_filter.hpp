@@ -4,6 +4,7 @@
 // (paper Sec. III-B, Sobel threshold tau_sobel; Sec. III-C, line removal).
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
@@ -13,7 +14,7 @@
 
 namespace l2s {
 
-class EdgeFilter {
+class L2S_EXPORT EdgeFilter {
  public:
   /// How the 3x3 Sobel responses gx, gy (cv::Sobel on the 8-bit gray image,
   /// each in [-1020, 1020]) become one 8-bit-like magnitude in [0, 255].
@@ -66,7 +67,10 @@ class EdgeFilter {
   /// `left`: the rectified left image (gray or BGR) the cloud's pixels refer
   /// to; `camera`: its camera (edge pixels are cast onto the plane through
   /// it); `board_cloud`: stereo points of the board plane; `plane_camera`:
-  /// that plane; `target`: the board, for the border lengths.
+  /// that plane; `target`: the board, for the border lengths. Throws
+  /// InputError naming the image when it is unusable or not the camera's
+  /// size, ParamError for an invalid target or a cloud whose pixels and
+  /// points differ in count.
   Result filter(const Image& left, const CameraInfo& camera, const StereoCloud& board_cloud,
                 const Plane& plane_camera, const Target& target) const;
 

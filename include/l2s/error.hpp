@@ -1,6 +1,10 @@
 #pragma once
 // The error family of l2scalib. Invalid input or configuration throws one of
 // these; expected failures (no board in a frame) are statuses in results.
+// Every class here may be caught as l2s::Error (or std::runtime_error); all
+// are exported, so that a program catches what a shared library throws.
+
+#include <l2s/export.hpp>
 
 #include <cassert>
 #include <stdexcept>
@@ -9,14 +13,14 @@
 namespace l2s {
 
 /// Base of every exception the library throws.
-class Error : public std::runtime_error {
+class L2S_EXPORT Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
 /// A file that is missing, unreadable or does not follow DATASET.md.
 /// The message always starts with the file's path.
-class FileError : public Error {
+class L2S_EXPORT FileError : public Error {
  public:
   FileError(const std::string& path, const std::string& problem)
       : Error(path + ": " + problem), path_(path) {}
@@ -27,7 +31,7 @@ class FileError : public Error {
 };
 
 /// A parameter outside its valid range; the message names the field.
-class ParamError : public Error {
+class L2S_EXPORT ParamError : public Error {
  public:
   ParamError(const std::string& field, const std::string& problem)
       : Error("parameter " + field + ": " + problem), field_(field), problem_(problem) {}
@@ -37,6 +41,19 @@ class ParamError : public Error {
  private:
   std::string field_;
   std::string problem_;
+};
+
+/// Data handed to a function that cannot be used: an image that does not fit
+/// its camera, a calibration result that failed. The message starts with the
+/// input's name ("left image: ...", "result: ...").
+class L2S_EXPORT InputError : public Error {
+ public:
+  InputError(const std::string& input, const std::string& problem)
+      : Error(input + ": " + problem), input_(input) {}
+  const std::string& input() const { return input_; }
+
+ private:
+  std::string input_;
 };
 
 }  // namespace l2s

@@ -4,6 +4,7 @@
 // every stage produced: the answer to "the board is not detected".
 
 #include <l2s/calibrator.hpp>
+#include <l2s/export.hpp>
 #include <l2s/stereo_rectifier.hpp>
 
 #include <Eigen/Geometry>
@@ -66,44 +67,30 @@ struct CameraInspection {
 
 /// Runs the lidar branch on one sweep and keeps every stage's result.
 /// Throws ParamError for invalid params or target (as the Calibrator does).
-LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
+L2S_EXPORT LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params);
 
 /// As above for a ring-free lidar: the sweeps (of a static board) are
 /// accumulated into one cloud, as the Calibrator does for ring_free_frames sweeps.
-LidarInspection inspect_lidar(const std::vector<LidarCloud>& sweeps, const Target& target,
-                              const Calibrator::Params& params);
+L2S_EXPORT LidarInspection inspect_lidar(const std::vector<LidarCloud>& sweeps, const Target& target,
+                                         const Calibrator::Params& params);
 
 /// Runs the camera branch on one pair (raw images are rectified first, as
 /// `cameras.images` says) and keeps every stage's result. Throws ParamError
-/// for invalid params or target, or images whose size differs from the cameras.
-CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
+/// for invalid params, target or cameras, InputError naming an image that
+/// cannot be used (as Calibrator::add).
+L2S_EXPORT CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
                                 const Target& target, const Calibrator::Params& params);
 
 /// A readable account of the branch, one stage per block: counts, the board
 /// plane and every rejected candidate with its reason, edge counts, circle
 /// candidates in board-plane coordinates, the labelled centres, and the
 /// thresholds each stage used (the Params fields to tune). Ends with a newline.
-std::string describe(const LidarInspection& inspection, const Calibrator::Params& params);
-/// As above; `cameras` (as given to inspect_camera) turn disparities into depths.
-std::string describe(const CameraInspection& inspection, const Calibrator::Params& params,
+L2S_EXPORT std::string describe(const LidarInspection& inspection, const Calibrator::Params& params);
+/// As above; `cameras` turn the disparity search range into depths.
+L2S_EXPORT std::string describe(const CameraInspection& inspection, const Calibrator::Params& params,
                      const StereoCamera& cameras);
 
-/// Debug picture of a lidar inspection: a top-down view of the filtered sweep
-/// (board points, plane candidates) beside a view in the board plane (board
-/// points, edge points, where rays through the holes crossed the plane, circle
-/// candidates, the four labelled holes and the board outline). BGR.
-Image render_lidar_inspection(const LidarInspection& inspection, const Target& target);
-
-/// Debug picture of a camera inspection: the left image (rectified, when the
-/// inspection rectified raw images) with the board-plane points tinted, the edge points, the circle candidates and the four labelled
-/// holes (stereo circles, and refined rims when the refiner ran). BGR.
-Image render_camera_inspection(const Image& left, const CameraInspection& inspection,
-                               const StereoCamera& cameras, const Target& target);
-
-/// The disparity map of a camera inspection's whole frame (the coarse pass
-/// when the board was located first), colour-coded (near red, far blue;
-/// black = no match), at the resolution SGBM ran at. Empty when stereo did not run.
-Image render_disparity(const CameraInspection& inspection);
+// Pictures of an inspection: l2s/viz/inspection_images.hpp (l2scalib::viz).
 
 }  // namespace l2s

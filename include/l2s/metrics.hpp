@@ -1,6 +1,8 @@
 #pragma once
 // Calibration error against ground truth (DATASET.md, Geiger et al. 2012).
 
+#include <l2s/export.hpp>
+
 #include <Eigen/Geometry>
 
 namespace l2s {
@@ -11,6 +13,6 @@ struct PoseError {
 };
 
 /// e_t and e_r of an estimate of T_lidar_camera against the truth.
-PoseError pose_error(const Eigen::Isometry3d& T_estimate, const Eigen::Isometry3d& T_true);
+L2S_EXPORT PoseError pose_error(const Eigen::Isometry3d& T_estimate, const Eigen::Isometry3d& T_true);
 
 }  // namespace l2s

@@ -7,6 +7,7 @@
 // board all around, are the holes' centres; the board points bordering them
 // are the rims.
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 
@@ -17,7 +18,7 @@
 
 namespace l2s {
 
-class OccupancyEdgeFilter {
+class L2S_EXPORT OccupancyEdgeFilter {
  public:
   struct Params {
     double cell_factor = 1.0;    ///< grid cell = this x the board points' mean spacing (from their density), > 0

@@ -2,6 +2,7 @@
 // Pass-through filter (paper Sec. III-A): keeps the part of a cloud where the
 // board can be, so that later stages work on a small, relevant set.
 
+#include <l2s/export.hpp>
 #include <l2s/types.hpp>
 
 #include <Eigen/Core>
@@ -15,7 +16,7 @@ namespace l2s {
 /// Keeps the finite points inside an axis-aligned box and a range interval,
 /// both in the sensor's own frame. Returns indices, so attributes (ring,
 /// intensity, pixel) stay reachable.
-class PassThroughFilter {
+class L2S_EXPORT PassThroughFilter {
  public:
   struct Params {
     static constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -48,6 +49,6 @@ class PassThroughFilter {
 };
 
 /// The points (and ring/intensity, when present) of `cloud` at `indices`, in that order.
-LidarCloud select(const LidarCloud& cloud, const std::vector<std::size_t>& indices);
+L2S_EXPORT LidarCloud select(const LidarCloud& cloud, const std::vector<std::size_t>& indices);
 
 }  // namespace l2s

@@ -4,6 +4,7 @@
 // board-sized ones are the hypotheses a branch verifies by their holes, most
 // board-like (size, standing apart from its surroundings) first.
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 
@@ -35,7 +36,7 @@ struct PlaneCandidate {
 };
 
 /// Finds the calibration board's plane in a lidar or stereo cloud.
-class PlaneSegmenter {
+class L2S_EXPORT PlaneSegmenter {
  public:
   struct Params {
     double distance_threshold = 0.01;  ///< [m] RANSAC consensus distance (paper delta_plane), 0.001..0.1

@@ -2,6 +2,7 @@
 // Registration of labelled hole centroids: translation-only least squares,
 // then the full rigid transform (paper Sec. III-D).
 
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 
 #include <Eigen/Geometry>
@@ -10,7 +11,7 @@
 
 namespace l2s {
 
-class Registrar {
+class L2S_EXPORT Registrar {
  public:
   struct Params {
     double min_extent = 0.01;     ///< [m] both point sets must spread at least this far from their mean, > 0

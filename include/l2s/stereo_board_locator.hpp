@@ -7,6 +7,7 @@
 // each one's region, and only its depth band, at full resolution.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
 #include <l2s/stereo_matcher.hpp>
@@ -18,7 +19,7 @@
 
 namespace l2s {
 
-class StereoBoardLocator {
+class L2S_EXPORT StereoBoardLocator {
  public:
   struct Params {
     double coarse_width = 480.0;  ///< [px] the coarse pass matches the pair scaled to about this width, >= 160
@@ -58,7 +59,8 @@ class StereoBoardLocator {
   /// Rectified pair. `stereo`: the full-resolution matcher the regions are for
   /// (its depth range is the working range searched here, its other settings
   /// are used at the coarse scale); `pass_through`: the camera's box and range.
-  /// Throws ParamError when the images and cameras disagree in size.
+  /// Throws InputError naming the image when one is unusable (empty,
+  /// not 1 or 3 channels) or its size differs from the other's or its camera's.
   Result locate(const Image& left, const Image& right, const StereoCamera& cameras, const Target& target,
                 const StereoMatcher::Params& stereo, const PassThroughFilter::Params& pass_through) const;
 

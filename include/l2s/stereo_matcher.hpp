@@ -3,6 +3,7 @@
 // (paper Sec. III-A, Semi-Global Matching after Hirschmuller 2008).
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/types.hpp>
 
@@ -42,7 +43,7 @@ struct DisparityMap {
 /// the same on every rig. Matches at the edge of that window (the true match
 /// lies outside it: SGBM clamps), or failing SGBM's left-right or uniqueness
 /// checks, give no point.
-class StereoMatcher {
+class L2S_EXPORT StereoMatcher {
  public:
   /// Cost aggregation paths of SGBM: 5 (single pass), 8 (two passes, slow),
   /// 8 in three passes (fast, parallel), 4 paths (HH4).
@@ -92,7 +93,8 @@ class StereoMatcher {
   const Params& params() const { return params_; }
 
   /// Matches a rectified pair (8-bit gray or BGR, same size as the cameras).
-  /// Throws ParamError when the images and cameras disagree in size.
+  /// Throws InputError naming the image when one is unusable (empty,
+  /// not 1 or 3 channels) or its size differs from the other's or its camera's.
   Result match(const Image& left, const Image& right, const StereoCamera& camera) const;
 
  private:

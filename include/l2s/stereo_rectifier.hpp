@@ -7,6 +7,7 @@
 //   T_lidar_camera = T_lidar_rect * T_rect_camera.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/types.hpp>
 
 #include <Eigen/Geometry>
@@ -20,7 +21,7 @@ namespace l2s {
 /// camera (R the identity, P its new camera matrix) that is undistortion.
 /// The remap tables are built once at construction; rectify() is a bilinear
 /// lookup per pixel.
-class CameraRectifier {
+class L2S_EXPORT CameraRectifier {
  public:
   /// Throws ParamError naming `name` and the field: a distortion model other
   /// than plumb_bob (4, 5 or 8 coefficients) or equidistant (4), a size or
@@ -31,8 +32,9 @@ class CameraRectifier {
   CameraRectifier& operator=(CameraRectifier&&) noexcept;
 
   /// The rectified image (same size and channels as the raw one); pixels that
-  /// see nothing of the raw image are 0. Throws ParamError when the image is
-  /// empty or its size differs from the camera's.
+  /// see nothing of the raw image are 0. Throws InputError naming the image
+  /// ("left image") when it is empty, not 1 or 3 channels, or its size
+  /// differs from the camera's.
   Image rectify(const Image& raw) const;
 
   /// [px] Where a raw pixel lands in the rectified image (undistorted to
@@ -62,13 +64,13 @@ struct RectifiedPair {
 };
 
 /// A raw stereo pair into the rectified images of its P's.
-class StereoRectifier {
+class L2S_EXPORT StereoRectifier {
  public:
   /// Throws ParamError as CameraRectifier does (naming "left" or "right"),
   /// and when the two cameras' image sizes differ.
   explicit StereoRectifier(const StereoCamera& raw);
 
-  /// Throws ParamError naming the image whose size differs from its camera.
+  /// Throws InputError naming the image that cannot be used (as CameraRectifier::rectify).
   RectifiedPair rectify(const Image& left, const Image& right) const;
 
   /// The rectified pair: ideal cameras of the P's, images = Rectified. The

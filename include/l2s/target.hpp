@@ -1,6 +1,8 @@
 #pragma once
 // The calibration board: a plane with four circular through-holes.
 
+#include <l2s/export.hpp>
+
 #include <Eigen/Core>
 #include <array>
 #include <string>
@@ -13,7 +15,7 @@ enum class Hole { TopLeft = 0, TopRight = 1, BottomLeft = 2, BottomRight = 3 };
 /// Geometry of the board (DATASET.md, target.yaml). The board frame has its
 /// origin at the centre of the front face, x to the right and y up as seen
 /// from the sensors, z out of the front face; the solid spans z in [-t, 0].
-struct Target {
+struct L2S_EXPORT Target {
   double board_width = 1.4;     ///< [m] outer size, long side horizontal
   double board_height = 1.0;    ///< [m]
   double board_thickness = 0.02;  ///< [m]

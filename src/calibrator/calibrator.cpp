@@ -1,6 +1,7 @@
 #include <l2s/calibrator.hpp>
 
 #include "calibrator/branches.hpp"
+#include "detail/input_checks.hpp"
 
 #include <l2s/error.hpp>
 
@@ -90,6 +91,7 @@ struct Calibrator::Impl {
 Calibrator::Calibrator(StereoCamera cameras, Target target, Params params) {
   params.validate();
   target.validate();
+  detail::check_cameras(cameras);
   impl_ = std::make_unique<Impl>(std::move(cameras), target, std::move(params));
 }
 
@@ -101,6 +103,9 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
                             const std::string& id) {
   const auto start = std::chrono::steady_clock::now();
   Impl& impl = *impl_;
+  // Here, not in the camera branch: an exception must leave before the lidar
+  // branch runs and from the caller's thread.
+  detail::check_stereo_images(left, right, impl.cameras);
   const auto lidar_branch = [&] { return impl.lidar_branch(lidar); };
   const auto camera_branch = [&] {
     return timed([&] {
@@ -124,6 +129,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
 
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
   const Impl& impl = *impl_;
+  detail::check_stereo_images(left, right, impl.cameras);
   return timed([&] { return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params); });
 }
 

@@ -5,6 +5,7 @@
 #include <l2s/frame_inspector.hpp>
 
 #include "calibrator/branches.hpp"
+#include "detail/input_checks.hpp"
 #include "detail/plane_frame.hpp"
 
 #include <algorithm>
@@ -223,6 +224,8 @@ CameraInspection inspect_camera(const Image& left, const Image& right, const Ste
                                 const Target& target, const Calibrator::Params& params) {
   params.validate();
   target.validate();
+  detail::check_cameras(cameras);
+  detail::check_stereo_images(left, right, cameras);
   CameraInspection inspection;
   const auto start = std::chrono::steady_clock::now();
   inspection.report = detail::run_camera_branch(left, right, detail::CameraSetup(cameras), target, params, &inspection);

@@ -113,6 +113,8 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   if (sweep.empty()) return fail(report, "input", "empty sweep");
   if (sweep.has_ring() && sweep.ring.size() != sweep.size())
     return fail(report, "input", "ring field has a different length than the points");
+  if (sweep.has_intensity() && sweep.intensity.size() != sweep.size())
+    return fail(report, "input", "intensity field has a different length than the points");
 
   const auto& kept =
       t.pass_through.emplace(PassThroughFilter(params.lidar_pass_through).filter(sweep.points));
@@ -152,6 +154,7 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
 bool is_ring_free(const LidarCloud& sweep) {
   // Bad input goes the ordinary way, whose report names the problem.
   if (sweep.has_ring() || sweep.size() < 3) return false;
+  if (sweep.has_intensity() && sweep.intensity.size() != sweep.size()) return false;
   return io::classify_scan(sweep).structure == io::ScanStructure::RingFree;
 }
 

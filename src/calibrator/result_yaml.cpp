@@ -8,6 +8,7 @@
 #include "io/yaml_helpers.hpp"
 
 #include <l2s/center_accumulator.hpp>
+#include <l2s/error.hpp>
 #include <l2s/pose.hpp>
 
 #include <cmath>
@@ -79,6 +80,10 @@ void emit_branch(YAML::Emitter& out, const std::string& key, const BranchReport&
 
 void write_calibration_result(const std::string& path, const Calibrator::Result& result,
                               const std::string& dataset, const std::string& preset) {
+  // A failed result holds an identity T_lidar_camera; written, it would pass
+  // for a calibration with every tool that reads only that key.
+  if (!result.found)
+    throw InputError("result", "the calibration failed (" + result.reason + "); not written to " + path);
   const Eigen::Isometry3d& T = result.T_lidar_camera;
   YAML::Emitter out;
   out << YAML::BeginMap;

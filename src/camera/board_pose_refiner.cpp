@@ -140,6 +140,7 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
                                                   const StereoCamera& camera, const Target& target,
                                                   const Eigen::Isometry3d& T_camera_board) const {
   target.validate();
+  detail::check_stereo_images(left, right, camera);
   const cv::Mat gray_left = detail::gray_mat(left, "left");
   const cv::Mat gray_right = detail::gray_mat(right, "right");
   Result result;

@@ -4,6 +4,8 @@
 #include <l2s/error.hpp>
 #include <l2s/types.hpp>
 
+#include "detail/input_checks.hpp"
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -12,13 +14,9 @@
 namespace l2s::detail {
 
 /// The 8-bit gray version of an image as a cv::Mat (a view when already gray).
-inline cv::Mat gray_mat(const Image& image, const std::string& field) {
-  if (image.empty() || image.width <= 0 || image.height <= 0)
-    throw ParamError(field, "image is empty");
-  if (image.channels != 1 && image.channels != 3)
-    throw ParamError(field, "image must have 1 or 3 channels");
-  if (image.pixels.size() != static_cast<std::size_t>(image.width) * image.height * image.channels)
-    throw ParamError(field, "pixel buffer size does not match width * height * channels");
+/// Throws InputError("<name> image", ...) for an unusable image.
+inline cv::Mat gray_mat(const Image& image, const std::string& name) {
+  check_image(image, name);
   cv::Mat view(image.height, image.width, image.channels == 1 ? CV_8UC1 : CV_8UC3,
                const_cast<std::uint8_t*>(image.pixels.data()));
   if (image.channels == 1) return view;

@@ -185,6 +185,7 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camer
   target.validate();
   if (board_cloud.pixels.size() != board_cloud.points.size())
     throw ParamError("board_cloud", "points and pixels differ in count");
+  detail::check_image(left, camera, "left");
   const cv::Mat gray = detail::gray_mat(left, "left");
   Result result;
   result.input_points = board_cloud.size();

@@ -8,6 +8,8 @@
 
 #include <l2s/error.hpp>
 
+#include "detail/input_checks.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -69,6 +71,7 @@ StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const I
                                                       const StereoMatcher::Params& stereo,
                                                       const PassThroughFilter::Params& pass_through) const {
   target.validate();
+  detail::check_stereo_images(left, right, cameras);
   Result result;
   const double board_short = std::min(target.board_width, target.board_height);
   const double by_width = params_.coarse_width / std::max(1, left.width);

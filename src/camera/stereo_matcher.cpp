@@ -161,12 +161,9 @@ StereoMatcher::Result StereoMatcher::match(const Image& left, const Image& right
                                            const StereoCamera& camera) const {
   const auto start = Clock::now();
   Result result;
+  detail::check_stereo_images(left, right, camera);
   const cv::Mat left_gray = detail::gray_mat(left, "left");
   const cv::Mat right_gray = detail::gray_mat(right, "right");
-  if (left.width != right.width || left.height != right.height)
-    throw ParamError("right", "image size differs from the left image");
-  if (camera.left.width > 0 && (camera.left.width != left.width || camera.left.height != left.height))
-    throw ParamError("left", "image size differs from the camera's width/height");
   const double baseline = camera.baseline();
   if (!(std::isfinite(baseline) && baseline > 0.0)) {
     result.reason = "stereo baseline is not positive";

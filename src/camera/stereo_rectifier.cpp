@@ -6,6 +6,8 @@
 
 #include <l2s/error.hpp>
 
+#include "detail/input_checks.hpp"
+
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -100,12 +102,7 @@ CameraRectifier::CameraRectifier(CameraRectifier&&) noexcept = default;
 CameraRectifier& CameraRectifier::operator=(CameraRectifier&&) noexcept = default;
 
 Image CameraRectifier::rectify(const Image& raw) const {
-  if (raw.empty() || (raw.channels != 1 && raw.channels != 3) ||
-      raw.pixels.size() != static_cast<std::size_t>(raw.width) * raw.height * raw.channels)
-    throw ParamError(name_ + " image", "empty, or not an 8-bit image of 1 or 3 channels");
-  if (raw.width != raw_.width || raw.height != raw_.height)
-    throw ParamError(name_ + " image", size_text(raw.width, raw.height) + ", the camera is " +
-                                           size_text(raw_.width, raw_.height));
+  detail::check_image(raw, raw_, name_);  // InputError naming the image, as Calibrator::add
   Image out(raw.width, raw.height, raw.channels);
   cv::Mat target = view(out);
   cv::remap(view(raw), target, maps_->map1, maps_->map2, cv::INTER_LINEAR, cv::BORDER_CONSTANT);

@@ -1,7 +1,7 @@
 // The camera debug pictures of a frame inspection: the left image with what each
 // stage found on it, and the disparity map.
 
-#include <l2s/frame_inspector.hpp>
+#include <l2s/viz/inspection_images.hpp>
 
 #include "detail/plane_frame.hpp"
 #include "viz/inspection_drawing.hpp"

@@ -2,7 +2,7 @@
 // with the plane candidates, and the board plane seen face-on with the edges,
 // circle candidates and labelled holes.
 
-#include <l2s/frame_inspector.hpp>
+#include <l2s/viz/inspection_images.hpp>
 
 #include "detail/plane_frame.hpp"
 #include "viz/inspection_drawing.hpp"

@@ -1,4 +1,4 @@
-#include <l2s/overlay.hpp>
+#include <l2s/viz/overlay.hpp>
 
 #include <algorithm>
 #include <array>

@@ -47,6 +47,20 @@ std::string read_bytes(const std::string& path) {
   return bytes.str();
 }
 
+std::string dataset_checker() { return std::string(L2S_SHARED_DIR) + "/tools/check_dataset.py"; }
+
+std::string dataset_checker_missing() {
+  if (!fs::exists(dataset_checker())) return "needs " + dataset_checker();
+  if (!fs::exists("/usr/bin/python3")) return "needs /usr/bin/python3";
+  if (std::system("/usr/bin/python3 -c 'import yaml' >/dev/null 2>&1") != 0) return "needs python3-yaml";
+  return "";
+}
+
+bool shared_required() {
+  const char* value = std::getenv("L2S_REQUIRE_SHARED");
+  return value && std::string(value) == "1";
+}
+
 ::testing::AssertionResult pose_near(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T_true,
                                      double rotation_deg, double translation_m) {
   const PoseError error = pose_error(T, T_true);

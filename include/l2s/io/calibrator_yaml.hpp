@@ -3,6 +3,7 @@
 // calibration result (DATASET.md transform plus what a user needs to use it).
 
 #include <l2s/calibrator.hpp>
+#include <l2s/export.hpp>
 
 #include <string>
 
@@ -12,16 +13,18 @@ namespace l2s::io {
 /// (default: "default"); every other key overrides one field, sections as in
 /// write_calibrator_params. Unknown keys are errors (a typo must not be ignored).
 /// Throws FileError naming the file and key; the result is validated.
-Calibrator::Params read_calibrator_params(const std::string& path);
+L2S_EXPORT Calibrator::Params read_calibrator_params(const std::string& path);
 
 /// Writes every field of `params`, atomically.
-void write_calibrator_params(const std::string& path, const Calibrator::Params& params,
+L2S_EXPORT void write_calibrator_params(const std::string& path, const Calibrator::Params& params,
                              const std::string& preset_comment = "");
 
 /// Writes a calibration result atomically: T_lidar_camera (DATASET.md), its
 /// inverse, quaternion, roll/pitch/yaw, ROS static_transform_publisher
 /// arguments for both directions, centroids, residuals and per-frame diagnostics.
-void write_calibration_result(const std::string& path, const Calibrator::Result& result,
+/// Throws InputError("result", ...) for a result that is not found (nothing is
+/// written, an existing file stays), FileError when the file cannot be written.
+L2S_EXPORT void write_calibration_result(const std::string& path, const Calibrator::Result& result,
                               const std::string& dataset = "", const std::string& preset = "");
 
 }  // namespace l2s::io

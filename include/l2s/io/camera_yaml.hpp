@@ -3,6 +3,7 @@
 // camera_calibration tool.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 
 #include <string>
 
@@ -14,10 +15,10 @@ namespace l2s::io {
 /// projection_matrix with fx, fy > 0. Optional: camera_name, distortion_model,
 /// distortion_coefficients (any length, also 0), rectification_matrix
 /// (default identity) and camera_matrix (default: the left 3x3 block of P).
-CameraInfo read_camera_info(const std::string& path);
+L2S_EXPORT CameraInfo read_camera_info(const std::string& path);
 
 /// Writes a camera_info YAML atomically.
-void write_camera_info(const std::string& path, const CameraInfo& camera);
+L2S_EXPORT void write_camera_info(const std::string& path, const CameraInfo& camera);
 
 /// Reads left.yaml and right.yaml of a dataset folder and checks the pair for
 /// what `images` needs. Both kinds: same image size; P a rectified pair (fx, fy,
@@ -27,7 +28,7 @@ void write_camera_info(const std::string& path, const CameraInfo& camera);
 /// length its model takes (plumb_bob 4, 5 or 8; equidistant 4; other models
 /// are errors); R a rotation. The FileError names the file and key that break
 /// the rule. The result's `images` is `images`.
-StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path,
+L2S_EXPORT StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path,
                                 ImageKind images = ImageKind::Rectified);
 
 }  // namespace l2s::io

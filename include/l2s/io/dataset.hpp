@@ -3,6 +3,7 @@
 // (lidar/*.pcd, left/*.png, right/*.png) matched by file stem.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/io/pcd.hpp>
 #include <l2s/io/ring_recovery.hpp>
 #include <l2s/target.hpp>
@@ -31,7 +32,7 @@ struct Frame {
 
 /// Read access to a dataset folder. Opening reads the YAML files and lists the
 /// frames; frames are loaded one at a time so that long recordings stream.
-class Dataset {
+class L2S_EXPORT Dataset {
  public:
   /// Throws FileError naming the file and the problem: missing folder or
   /// camera YAML, malformed YAML, a dataset.yaml with an unknown key or value,
@@ -83,7 +84,7 @@ class Dataset {
 /// Writes a dataset folder: creates it and its sub-folders, writes the camera
 /// and target YAMLs at construction, then frames one at a time. Every file is
 /// written atomically, and the result passes Dataset::open and check_dataset.py.
-class DatasetWriter {
+class L2S_EXPORT DatasetWriter {
  public:
   /// Writes dataset.yaml (images: raw) for raw cameras; rectified ones need
   /// none (the default). Throws FileError when the pair does not fit its image

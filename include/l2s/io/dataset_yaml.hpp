@@ -2,6 +2,7 @@
 // dataset.yaml: what kind of images a dataset folder holds (DATASET.md, version 2).
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 
 #include <string>
 
@@ -15,15 +16,15 @@ struct DatasetInfo {
 /// Reads dataset.yaml. An empty file means the defaults. Throws FileError naming
 /// the file and the key for malformed YAML, an unknown key (a typo must not be
 /// ignored) or a value other than rectified/raw.
-DatasetInfo read_dataset_info(const std::string& path);
+L2S_EXPORT DatasetInfo read_dataset_info(const std::string& path);
 
 /// Reads dataset.yaml when the file exists, otherwise returns the defaults.
-DatasetInfo read_dataset_info_or_default(const std::string& path);
+L2S_EXPORT DatasetInfo read_dataset_info_or_default(const std::string& path);
 
 /// Writes dataset.yaml atomically.
-void write_dataset_info(const std::string& path, const DatasetInfo& info);
+L2S_EXPORT void write_dataset_info(const std::string& path, const DatasetInfo& info);
 
 /// "rectified" or "raw", as dataset.yaml spells it.
-std::string to_string(ImageKind images);
+L2S_EXPORT std::string to_string(ImageKind images);
 
 }  // namespace l2s::io

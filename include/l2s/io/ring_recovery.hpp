@@ -9,6 +9,7 @@
 // recovery fits that model per laser, far returns first, and gives every
 // return the laser whose model explains it best.
 
+#include <l2s/export.hpp>
 #include <l2s/types.hpp>
 
 #include <cstddef>
@@ -31,8 +32,8 @@ enum class ScanStructure {
 };
 
 /// "field", "organised rows", "laser model"; "rings", "ring-free".
-std::string to_string(RingSource source);
-std::string to_string(ScanStructure structure);
+L2S_EXPORT std::string to_string(RingSource source);
+L2S_EXPORT std::string to_string(ScanStructure structure);
 
 /// One laser as recovered: its returns lie on z = d * tan(elevation) + offset.
 struct LaserFit {
@@ -48,7 +49,7 @@ struct LaserFit {
 };
 
 /// How a sweep's rings were found, and whether they can be trusted.
-struct RingRecoveryReport {
+struct L2S_EXPORT RingRecoveryReport {
   RingSource source = RingSource::LaserModel;
   ScanStructure structure = ScanStructure::Rings;
   std::string structure_reason;  ///< why Rings or RingFree, in words
@@ -72,7 +73,7 @@ struct RingRecoveryReport {
   std::string summary() const;
 };
 
-struct RingRecoveryParams {
+struct L2S_EXPORT RingRecoveryParams {
   /// [rad] two lasers are at least this far apart in elevation; must be below
   /// the smallest beam spacing (HDL-64E: 0.33 deg) and above the elevation
   /// noise of one beam. > 0.
@@ -97,11 +98,11 @@ struct RingRecoveryParams {
 /// the returns, and reports the structure found (Rings or RingFree, doubts).
 /// Returns that are not finite or sit on the spin axis get ring 0 and count
 /// for no ring. Deterministic: no randomness, the same cloud gives the same rings.
-RingRecoveryReport recover_ring_structure(LidarCloud& cloud, const RingRecoveryParams& params = {});
+L2S_EXPORT RingRecoveryReport recover_ring_structure(LidarCloud& cloud, const RingRecoveryParams& params = {});
 
 /// recover_ring_structure(cloud, params).rings: the ring count (0 when no
 /// return is valid).
-int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params = {});
+L2S_EXPORT int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params = {});
 
 /// For an organised cloud of `height` rows (PcdFile::height): when the rows
 /// look like lasers (each row's returns fit one laser model tightly compared
@@ -110,7 +111,7 @@ int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params = {});
 /// some drivers do, are numbered from the bottom) with source OrganisedRows.
 /// Otherwise falls back to recover_ring_structure and says why in `note`.
 /// Throws ParamError when height is 0 or does not divide the cloud's size.
-RingRecoveryReport rings_from_rows(LidarCloud& cloud, std::size_t height,
+L2S_EXPORT RingRecoveryReport rings_from_rows(LidarCloud& cloud, std::size_t height,
                                    const RingRecoveryParams& params = {});
 
 /// Whether a sweep needs the ring path or the ring-free one, and why. A sweep
@@ -119,6 +120,6 @@ struct ScanClassification {
   ScanStructure structure = ScanStructure::Rings;
   std::string reason;
 };
-ScanClassification classify_scan(const LidarCloud& cloud, const RingRecoveryParams& params = {});
+L2S_EXPORT ScanClassification classify_scan(const LidarCloud& cloud, const RingRecoveryParams& params = {});
 
 }  // namespace l2s::io

@@ -1,6 +1,7 @@
 #pragma once
 // target.yaml: the board geometry (DATASET.md).
 
+#include <l2s/export.hpp>
 #include <l2s/target.hpp>
 
 #include <string>
@@ -11,12 +12,12 @@ namespace l2s::io {
 /// keys are ignored, an empty file means all defaults. Throws FileError on
 /// malformed YAML, non-numeric values or an impossible board (Target::validate's
 /// message, prefixed with the file).
-Target read_target(const std::string& path);
+L2S_EXPORT Target read_target(const std::string& path);
 
 /// Reads target.yaml when the file exists, otherwise returns the defaults.
-Target read_target_or_default(const std::string& path);
+L2S_EXPORT Target read_target_or_default(const std::string& path);
 
 /// Writes target.yaml atomically.
-void write_target(const std::string& path, const Target& target);
+L2S_EXPORT void write_target(const std::string& path, const Target& target);
 
 }  // namespace l2s::io

@@ -6,6 +6,8 @@
 // bright matte board before a dark textured wall, soft light, no shadows,
 // linear 8-bit gray.
 
+#include <l2s/export.hpp>
+
 #include <Eigen/Core>
 #include <string>
 
@@ -34,14 +36,14 @@ enum class Sky {
 
 /// Names for files and the command line: matte|wood|low-contrast,
 /// textured|bricks|tiles|plain, uniform|daylight. Parsers throw ParamError naming `field`.
-const char* name_of(BoardTexture texture);
-const char* name_of(Background background);
-const char* name_of(Sky sky);
-BoardTexture board_texture_from_name(const std::string& name, const std::string& field);
-Background background_from_name(const std::string& name, const std::string& field);
-Sky sky_from_name(const std::string& name, const std::string& field);
+L2S_SIM_EXPORT const char* name_of(BoardTexture texture);
+L2S_SIM_EXPORT const char* name_of(Background background);
+L2S_SIM_EXPORT const char* name_of(Sky sky);
+L2S_SIM_EXPORT BoardTexture board_texture_from_name(const std::string& name, const std::string& field);
+L2S_SIM_EXPORT Background background_from_name(const std::string& name, const std::string& field);
+L2S_SIM_EXPORT Sky sky_from_name(const std::string& name, const std::string& field);
 
-struct Appearance {
+struct L2S_SIM_EXPORT Appearance {
   BoardTexture board = BoardTexture::Matte;
   Background background = Background::Textured;
   Sky sky = Sky::Uniform;

@@ -6,6 +6,7 @@
 // background, sun and shadows, camera response). The lidar and scene
 // geometry are drawn elsewhere; the two are composed into a SimulationConfig.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/stereo_rig.hpp>
 
@@ -14,7 +15,7 @@
 
 namespace l2s::sim {
 
-struct CameraSceneDraw {
+struct L2S_SIM_EXPORT CameraSceneDraw {
   StereoRig rig;          ///< 640x480..1920x1200, HFOV 40..100 deg, B 0.07..0.5 m; raw or ideal rectified
   Appearance appearance;  ///< every look, shadows in ~70 % of the draws
   /// What the look needs from the geometry (SceneLayout): the wall this far
@@ -33,6 +34,6 @@ struct CameraSceneDraw {
 /// same draw on every platform (only the generator's raw 64-bit output is
 /// used, no std distributions). Every draw passes StereoRig::validate and
 /// Appearance::validate.
-CameraSceneDraw draw_camera_scene(std::mt19937_64& rng);
+L2S_SIM_EXPORT CameraSceneDraw draw_camera_scene(std::mt19937_64& rng);
 
 }  // namespace l2s::sim

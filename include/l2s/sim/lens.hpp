@@ -6,6 +6,8 @@
 // in OpenCV's fisheye module). Both act on normalised coordinates
 // (x, y) = (X / Z, Y / Z) of a point in the camera's optical frame.
 
+#include <l2s/export.hpp>
+
 #include <Eigen/Core>
 #include <array>
 #include <string>
@@ -20,11 +22,11 @@ enum class DistortionModel {
 };
 
 /// "none", "plumb_bob", "equidistant"; throws ParamError naming `field` on other names.
-DistortionModel distortion_model_from_name(const std::string& name, const std::string& field);
-const char* name_of(DistortionModel model);
+L2S_SIM_EXPORT DistortionModel distortion_model_from_name(const std::string& name, const std::string& field);
+L2S_SIM_EXPORT const char* name_of(DistortionModel model);
 
 /// A lens distortion in normalised coordinates.
-struct LensDistortion {
+struct L2S_SIM_EXPORT LensDistortion {
   DistortionModel model = DistortionModel::None;
   /// plumb_bob: k1 k2 p1 p2 k3; equidistant: k1 k2 k3 k4 (the fifth is unused and must be 0).
   std::array<double, 5> coefficients{};
@@ -59,11 +61,11 @@ struct LensDistortion {
 /// distortion that grows with the field of view (plumb_bob k1 -0.08 at 40 deg
 /// to -0.30 at 100 deg, with k2 keeping the profile monotonic, and small
 /// tangential terms; equidistant coefficients of a few hundredths).
-LensDistortion typical_distortion(DistortionModel model, double horizontal_fov);
+L2S_SIM_EXPORT LensDistortion typical_distortion(DistortionModel model, double horizontal_fov);
 
 /// What makes one physical camera of a pair differ from the rig's nominal
 /// pinhole (StereoRig::horizontal_fov and the image centre).
-struct CameraLens {
+struct L2S_SIM_EXPORT CameraLens {
   double focal_scale = 1.0;  ///< fx relative to the nominal fx of the rig, 0.8..1.25
   double aspect = 1.0;       ///< fy / fx, 0.95..1.05 (real sensors: within ~1 %)
   Eigen::Vector2d principal_offset = Eigen::Vector2d::Zero();  ///< [px] principal point minus the image centre

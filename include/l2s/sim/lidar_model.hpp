@@ -4,6 +4,8 @@
 // HDL-32E, HDL-64E) and ring-free solid-state lidars with a non-repetitive
 // rosette scan (Livox Avia- and Mid-360-like).
 
+#include <l2s/export.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,8 +22,8 @@ enum class ScanPattern : std::uint8_t {
 enum class ReturnMode : std::uint8_t { Strongest = 0, Last = 1, First = 2 };
 
 /// "strongest" | "last" | "first"; throws ParamError(field, ...) otherwise.
-ReturnMode return_mode_from_name(const std::string& name, const std::string& field = "return_mode");
-const char* return_mode_name(ReturnMode mode);
+L2S_SIM_EXPORT ReturnMode return_mode_from_name(const std::string& name, const std::string& field = "return_mode");
+L2S_SIM_EXPORT const char* return_mode_name(ReturnMode mode);
 
 /// What one firing illuminates (data sheet). Used only when the simulator's
 /// beam footprint is on; the ideal lidar of the paper casts one exact ray.
@@ -36,7 +38,7 @@ struct BeamOptics {
 /// in opposite directions at incommensurate rates, so the pattern never
 /// repeats and the covered share of the field of view grows with time. With
 /// `rotation_rate` > 0 the whole head also turns (360 deg sensors).
-struct RosetteScan {
+struct L2S_SIM_EXPORT RosetteScan {
   double azimuth_half_width = 0.0;  ///< [rad] rosette reach left/right of its centre, > 0
   double elevation_min = 0.0;       ///< [rad] lowest elevation of the field of view
   double elevation_max = 0.0;       ///< [rad] highest, > elevation_min
@@ -53,7 +55,7 @@ struct RosetteScan {
 
 /// A lidar type: its scan pattern, beam table or rosette, range limits,
 /// range noise and beam optics; optionally one unit's per-laser calibration.
-struct LidarModel {
+struct L2S_SIM_EXPORT LidarModel {
   std::string name;                 ///< "vlp16", "hdl32", "hdl64", "avia" or "mid360"
   ScanPattern pattern = ScanPattern::Spinning;
   std::vector<double> elevations;   ///< [rad] spinning: per ring, ring 0 = lowest beam, ascending

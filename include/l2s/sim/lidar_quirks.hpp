@@ -5,6 +5,7 @@
 // corrections), and beam divergence (a footprint that mixes the echoes of
 // several surfaces at depth edges). All off by default.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/lidar_model.hpp>
 
 #include <cstdint>
@@ -13,7 +14,7 @@
 namespace l2s::sim {
 
 /// Which quirks a simulated lidar shows.
-struct LidarQuirks {
+struct L2S_SIM_EXPORT LidarQuirks {
   bool laser_table = false;     ///< spinning models: per-laser offsets and angle errors drawn like a real table
   bool beam_footprint = false;  ///< divergence: mixed returns at depth edges, holes that look smaller
   ReturnMode return_mode = ReturnMode::Strongest;  ///< the echo reported when a footprint sees several surfaces
@@ -35,10 +36,10 @@ struct LidarQuirks {
 ///   to +-0.1 rad, elevation errors 0.1 deg (kept in ascending order).
 /// - any other spinning model: as vlp16.
 /// Throws ParamError("lidar", ...) for a rosette model.
-std::vector<LidarModel::LaserCorrection> draw_laser_table(const LidarModel& model, std::uint64_t seed);
+L2S_SIM_EXPORT std::vector<LidarModel::LaserCorrection> draw_laser_table(const LidarModel& model, std::uint64_t seed);
 
 /// `model` as one real unit: its drawn laser table when quirks.laser_table is
 /// on (spinning models; a rosette lidar has one beam origin and no table).
-LidarModel with_quirks(LidarModel model, const LidarQuirks& quirks);
+L2S_SIM_EXPORT LidarModel with_quirks(LidarModel model, const LidarQuirks& quirks);
 
 }  // namespace l2s::sim

@@ -14,6 +14,7 @@
 // The draw uses only the generator's raw 64-bit output (no std::
 // distributions), so one seed gives the same scene on every platform.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/lidar_quirks.hpp>
 #include <l2s/sim/placement.hpp>
 #include <l2s/sim/scene.hpp>
@@ -26,7 +27,7 @@
 namespace l2s::sim {
 
 /// The lidar side of one scene.
-struct LidarSceneDraw {
+struct L2S_SIM_EXPORT LidarSceneDraw {
   std::string lidar = "vlp16";  ///< vlp16 | hdl32 | hdl64 | mid360 | avia, equally likely
   LidarQuirks quirks;           ///< all on; a drawn table seed; strongest 70 %, last 20 %, first 10 %
   SensorSetting lidar_pose;     ///< in the camera body frame: within 1 m, yaw +-0.7, pitch and roll +-0.3 rad
@@ -49,6 +50,6 @@ struct LidarSceneDraw {
 };
 
 /// Draws the lidar side of one scene from `rng` (advances it).
-LidarSceneDraw draw_lidar_scene(std::mt19937_64& rng);
+L2S_SIM_EXPORT LidarSceneDraw draw_lidar_scene(std::mt19937_64& rng);
 
 }  // namespace l2s::sim

@@ -8,6 +8,7 @@
 // each laser from its own origin and angles, and with `beam_footprint` the
 // beam's divergence mixes the echoes of every surface it touches.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/lidar_model.hpp>
 #include <l2s/sim/ray_caster.hpp>
 #include <l2s/types.hpp>
@@ -23,7 +24,7 @@ namespace detail {
 class BeamFootprint;
 }
 
-class LidarSimulator {
+class L2S_SIM_EXPORT LidarSimulator {
  public:
   struct Params {
     double noise_factor = 1.0;       ///< K: range sigma = K * model.range_sigma0, >= 0

@@ -7,6 +7,7 @@
 // and on the board around its rim within the accumulation time. Also finds
 // such a placement by a deterministic grid search.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/lidar_model.hpp>
 #include <l2s/sim/scene.hpp>
 #include <l2s/sim/settings.hpp>
@@ -41,7 +42,7 @@ struct PlacementRequirements {
 };
 
 /// The verdict for one scene, lidar model and setting.
-struct PlacementReport {
+struct L2S_SIM_EXPORT PlacementReport {
   bool ok = false;
   std::vector<std::string> failures;     ///< one readable line per failed condition
   double image_margin = 0.0;             ///< [px] smallest, over both images
@@ -59,7 +60,7 @@ struct PlacementReport {
 };
 
 /// Checks `scene` for one lidar model mounted as `setting` and the camera `rig`.
-PlacementReport check_placement(const Scene& scene, const LidarModel& lidar,
+L2S_SIM_EXPORT PlacementReport check_placement(const Scene& scene, const LidarModel& lidar,
                                 const SensorSetting& setting, const StereoRig& rig = {},
                                 const PlacementRequirements& requirements = {});
 
@@ -87,7 +88,7 @@ struct PlacementResult {
 /// then the best-rated poses are checked exactly, in batches, until some pass). Deterministic: ties go to the
 /// first pose in grid order. When none passes, found = false and `pose` is
 /// the best-scoring candidate.
-PlacementResult find_placement(const Target& target, const SensorSetting& setting,
+L2S_SIM_EXPORT PlacementResult find_placement(const Target& target, const SensorSetting& setting,
                                const std::vector<LidarModel>& lidars, const StereoRig& rig = {},
                                const SceneLayout& layout = {}, const PlacementSearch& search = {});
 

@@ -6,6 +6,7 @@
 // into one simulation. A draw whose board cannot be placed for both sensors
 // is drawn again from the next derived seed, so every seed gives a scene.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <cstdint>
@@ -23,6 +24,6 @@ struct RandomScene {
 
 /// The scene of `seed` with `frames` frames at noise factor `noise_k`.
 /// Deterministic. Throws Error when no draw of 50 could be placed.
-RandomScene make_random_scene(std::uint64_t seed, int frames = 30, double noise_k = 1.0, int threads = 0);
+L2S_SIM_EXPORT RandomScene make_random_scene(std::uint64_t seed, int frames = 30, double noise_k = 1.0, int threads = 0);
 
 }  // namespace l2s::sim

@@ -4,6 +4,7 @@
 // through a hole reaches whatever lies behind it, the rim occludes part of the
 // hole at oblique incidence and the hole's inner wall can be hit.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/scene.hpp>
 
 #include <Eigen/Core>
@@ -36,7 +37,7 @@ struct Cone {
 };
 
 /// Casts rays into one Scene. Construction precomputes the inverse poses.
-class RayCaster {
+class L2S_SIM_EXPORT RayCaster {
  public:
   explicit RayCaster(const Scene& scene);
 

@@ -7,6 +7,7 @@
 // a pillar. Everything is given in the camera body frame (x forward, y left,
 // z up, origin at the left camera's optical centre).
 
+#include <l2s/export.hpp>
 #include <l2s/target.hpp>
 
 #include <Eigen/Geometry>
@@ -33,7 +34,7 @@ enum class SurfaceId : std::uint8_t {
 /// R_cambody_board = Rz(yaw) * Ry(pitch) * Rx(roll) * R_facing: roll turns the
 /// board in its own plane, pitch tilts it back (positive: face turns up), yaw
 /// turns it about the vertical.
-struct BoardPose {
+struct L2S_SIM_EXPORT BoardPose {
   double x = 3.0;      ///< [m] forward
   double y = 0.0;      ///< [m] left
   double z = 0.0;      ///< [m] up
@@ -51,7 +52,7 @@ struct Box {
 };
 
 /// How the scene around the board is laid out (defaults: the paper's world).
-struct SceneLayout {
+struct L2S_SIM_EXPORT SceneLayout {
   double camera_height = 1.5;     ///< [m] camera optical centre above the ground
   double wall_gap = 3.0;          ///< [m] wall front face behind the board centre, along body x
   double wall_half_width = 15.0;  ///< [m] wall extent to each side along body y
@@ -87,6 +88,6 @@ struct Scene {
 /// near clutter stays below the sight lines to the board (it never hides it
 /// from sensors above the box tops). Throws ParamError when the target or
 /// layout is invalid.
-Scene make_scene(const Target& target, const BoardPose& pose, const SceneLayout& layout = {});
+L2S_SIM_EXPORT Scene make_scene(const Target& target, const BoardPose& pose, const SceneLayout& layout = {});
 
 }  // namespace l2s::sim

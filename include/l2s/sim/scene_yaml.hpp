@@ -34,6 +34,7 @@
 //   strict_placement: true
 //   threads: 0
 
+#include <l2s/export.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <string>
@@ -41,10 +42,10 @@
 namespace l2s::sim {
 
 /// Reads a scene file; throws FileError naming the file and key on bad input.
-SimulationConfig load_simulation_config(const std::string& path);
+L2S_SIM_EXPORT SimulationConfig load_simulation_config(const std::string& path);
 
 /// The same from YAML text (`origin` names the source in error messages).
-SimulationConfig parse_simulation_config(const std::string& yaml_text,
+L2S_SIM_EXPORT SimulationConfig parse_simulation_config(const std::string& yaml_text,
                                          const std::string& origin = "<scene>");
 
 }  // namespace l2s::sim

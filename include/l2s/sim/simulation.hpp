@@ -2,6 +2,7 @@
 // The simulator's facade: from one flat SimulationConfig to a dataset folder
 // laid out as DATASET.md says (the paper's Gazebo test suite, Sec. IV-A).
 
+#include <l2s/export.hpp>
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/lidar_model.hpp>
 #include <l2s/sim/lidar_quirks.hpp>
@@ -25,7 +26,7 @@
 namespace l2s::sim {
 
 /// Everything that defines a synthetic dataset. Same config -> same bytes.
-struct SimulationConfig {
+struct L2S_SIM_EXPORT SimulationConfig {
   int setting_index = 1;         ///< 1..9 for Table I, 0 for a custom `setting`
   SensorSetting setting = {-0.8, -0.1, 0.4, 0.0, 0.0, 0.0};  ///< lidar pose in camera body
   std::string lidar = "vlp16";   ///< vlp16 | hdl32 | hdl64 | avia | mid360 (LidarModel::by_name)
@@ -74,7 +75,7 @@ using ProgressCallback = std::function<void(int done, int total)>;
 
 /// Builds the scene of a config once (placement, check, clean images) and then
 /// produces frames on demand. The expensive render happens in the constructor.
-class DatasetSimulator {
+class L2S_SIM_EXPORT DatasetSimulator {
  public:
   /// Throws ParamError on a bad config, Error when strict_placement is set and
   /// the placement check fails (the message says which hole/ring/image failed).
@@ -109,7 +110,7 @@ class DatasetSimulator {
 
 /// Writes the dataset of `config` into `out_dir` (DatasetSimulator::write).
 /// Returns the warnings (empty unless strict_placement is off and the check failed).
-std::vector<std::string> simulate_dataset(const SimulationConfig& config,
+L2S_SIM_EXPORT std::vector<std::string> simulate_dataset(const SimulationConfig& config,
                                           const std::string& out_dir,
                                           const ProgressCallback& progress = {});
 

@@ -8,6 +8,7 @@
 // Gaussian intensity noise N(0, (K * 0.007)^2) on a 0..1 scale (paper,
 // Sec. IV-B) and 8-bit gray or BGR output.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/ray_caster.hpp>
 #include <l2s/sim/stereo_rig.hpp>
@@ -43,7 +44,7 @@ struct StereoImages {
   Image right;
 };
 
-class StereoRenderer {
+class L2S_SIM_EXPORT StereoRenderer {
  public:
   struct Params {
     int edge_samples = 4;         ///< per axis where a pixel straddles surfaces (4 -> 16 samples), 1..8

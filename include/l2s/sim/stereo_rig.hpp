@@ -9,6 +9,7 @@
 // cameras see them.
 
 #include <l2s/camera.hpp>
+#include <l2s/export.hpp>
 #include <l2s/sim/lens.hpp>
 
 #include <Eigen/Geometry>
@@ -25,7 +26,7 @@ namespace l2s::sim {
 /// camera. The right physical camera sits at
 /// T_left_right = [R(right_rotation) | (baseline, 0, 0) + right_offset] in the
 /// left optical frame.
-struct StereoRig {
+struct L2S_SIM_EXPORT StereoRig {
   int width = 1280;                ///< [px] 16..16384
   int height = 960;                ///< [px] 16..16384
   double horizontal_fov = 0.7505;  ///< [rad] nominal full horizontal field of view, (0.05, 3.0)

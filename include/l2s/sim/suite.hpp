@@ -4,6 +4,8 @@
 // that share simulated frames is run (simulate -> calibrate -> evaluate, in
 // memory). `l2s suite` schedules the groups; suite_results.hpp records them.
 
+#include <l2s/export.hpp>
+
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -16,7 +18,7 @@ namespace l2s::sim {
 /// or "scenes" (`scene_count` randomised scenes, sim::make_random_scene: other
 /// rigs, lenses, raw images, boards, backgrounds, light, lidars and their
 /// quirks; one run per scene, `setting` numbers the scene).
-struct SuiteOptions {
+struct L2S_SUITE_EXPORT SuiteOptions {
   std::vector<std::string> experiments = {"frames", "noise", "lidars"};
   std::vector<std::string> presets = {"default", "paper"};  ///< Calibrator presets
   int repeats = 3;         ///< repetitions per cell (independent seeds), >= 1
@@ -29,7 +31,7 @@ struct SuiteOptions {
 };
 
 /// One calibration run: simulated data, preset, and how often it is evaluated.
-struct SuiteCell {
+struct L2S_SUITE_EXPORT SuiteCell {
   std::string experiment;
   int setting = 1;          ///< Table I setting, 1..9 (scenes: the scene's number)
   std::string lidar;        ///< vlp16 | hdl32 | hdl64 (scenes: "random", the scene draws it)
@@ -61,14 +63,14 @@ struct SuiteGroup {
 /// Simulation seed of a group, a pure function of its coordinates; the lidar
 /// model is left out on purpose so that all lidars of a group see the same
 /// stereo frames (and `l2s simulate --seed` reproduces any row).
-std::uint64_t suite_seed(std::uint64_t base_seed, const std::string& experiment, int setting,
+L2S_SUITE_EXPORT std::uint64_t suite_seed(std::uint64_t base_seed, const std::string& experiment, int setting,
                          double noise_k, int repetition);
 
 /// The groups of the requested experiments in a fixed order. Throws ParamError.
-std::vector<SuiteGroup> make_suite_plan(const SuiteOptions& options);
+L2S_SUITE_EXPORT std::vector<SuiteGroup> make_suite_plan(const SuiteOptions& options);
 
 /// One evaluation of one cell: a line of results.csv.
-struct SuiteRow {
+struct L2S_SUITE_EXPORT SuiteRow {
   std::string experiment;
   int setting = 1;
   std::string lidar;
@@ -99,7 +101,7 @@ struct SuiteRow {
 /// A simulator that cannot place the board makes its cells failed rows (with
 /// the reason), never an exception. `threads` goes to the simulator (0 = all
 /// cores); `on_frame` is called after each frame.
-std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
+L2S_SUITE_EXPORT std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
                                       int threads = 0, const std::function<void()>& on_frame = {});
 
 }  // namespace l2s::sim

@@ -3,6 +3,7 @@
 // cells finish, read back to resume), the statistics of the paper's box plots
 // (median, IQR), summary.md, and the thresholds that `--quick` is held to.
 
+#include <l2s/export.hpp>
 #include <l2s/sim/suite.hpp>
 
 #include <set>
@@ -12,11 +13,11 @@
 namespace l2s::sim {
 
 /// The header line of results.csv (no newline).
-std::string suite_csv_header();
+L2S_SUITE_EXPORT std::string suite_csv_header();
 /// One row as a CSV line (no newline); text fields quoted when needed.
-std::string to_csv_line(const SuiteRow& row);
+L2S_SUITE_EXPORT std::string to_csv_line(const SuiteRow& row);
 /// Parses a line written by to_csv_line; throws Error on a malformed line.
-SuiteRow parse_csv_line(const std::string& line);
+L2S_SUITE_EXPORT SuiteRow parse_csv_line(const std::string& line);
 
 /// results.csv as read back: complete lines only.
 struct SuiteCsv {
@@ -25,9 +26,9 @@ struct SuiteCsv {
 };
 /// Reads results.csv; a missing file gives no rows. Throws FileError on a bad
 /// header or a malformed complete line.
-SuiteCsv read_suite_csv(const std::string& path);
+L2S_SUITE_EXPORT SuiteCsv read_suite_csv(const std::string& path);
 /// Writes header and rows atomically (temporary file, then rename).
-void write_suite_csv(const std::string& path, const std::vector<SuiteRow>& rows);
+L2S_SUITE_EXPORT void write_suite_csv(const std::string& path, const std::vector<SuiteRow>& rows);
 
 /// What a resumed run keeps and skips.
 struct SuiteResume {
@@ -37,15 +38,15 @@ struct SuiteResume {
 };
 /// Splits earlier rows into finished cells and leftovers. Throws Error when a
 /// row's seed differs from the plan's (results.csv of another --seed).
-SuiteResume resume_suite(const std::vector<SuiteGroup>& plan, const std::vector<SuiteRow>& rows);
+L2S_SUITE_EXPORT SuiteResume resume_suite(const std::vector<SuiteGroup>& plan, const std::vector<SuiteRow>& rows);
 
 /// Sorts rows in a stable reading order (experiment, setting, lidar, K,
 /// preset, repetition, frames), so the final file does not depend on --jobs.
-void sort_suite_rows(std::vector<SuiteRow>& rows);
+L2S_SUITE_EXPORT void sort_suite_rows(std::vector<SuiteRow>& rows);
 
 /// Percentile with linear interpolation between order statistics (numpy's
 /// default), p in [0, 100]; NaN for no values.
-double percentile(std::vector<double> values, double p);
+L2S_SUITE_EXPORT double percentile(std::vector<double> values, double p);
 
 /// Statistics of a set of runs.
 struct SuiteStats {
@@ -55,11 +56,11 @@ struct SuiteStats {
   double e_r_median = 0.0, e_r_iqr = 0.0;  ///< [rad]
   double success_rate() const { return runs > 0 ? static_cast<double>(successes) / runs : 0.0; }
 };
-SuiteStats suite_stats(const std::vector<const SuiteRow*>& rows);
+L2S_SUITE_EXPORT SuiteStats suite_stats(const std::vector<const SuiteRow*>& rows);
 
 /// summary.md: per experiment, a table of success rate, median and IQR of e_t
 /// [mm] and e_r [deg] per setting and overall, then the failure reasons.
-std::string suite_summary_markdown(const std::vector<SuiteRow>& rows);
+L2S_SUITE_EXPORT std::string suite_summary_markdown(const std::vector<SuiteRow>& rows);
 
 /// Limits a run is held to (tests/suite_quick_thresholds.yaml).
 struct SuiteThresholds {
@@ -75,11 +76,11 @@ struct SuiteThresholds {
 };
 /// Reads `presets: {name: {min_success_rate, max_e_t_mm, max_e_r_deg}}` and the
 /// optional `experiments: {experiment: {name: {...}}}`; throws FileError.
-SuiteThresholds read_suite_thresholds(const std::string& path);
+L2S_SUITE_EXPORT SuiteThresholds read_suite_thresholds(const std::string& path);
 /// One line per cell variant (experiment, setting, lidar, K, preset, final
 /// frame count) that breaks its preset's limits; empty when all pass. The
 /// scenes of "scenes" are one variant: their limits hold for the distribution.
-std::vector<std::string> check_suite_thresholds(const std::vector<SuiteRow>& rows,
+L2S_SUITE_EXPORT std::vector<std::string> check_suite_thresholds(const std::vector<SuiteRow>& rows,
                                                 const SuiteThresholds& thresholds);
 
 }  // namespace l2s::sim

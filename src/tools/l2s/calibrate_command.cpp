@@ -10,7 +10,7 @@
 #include <l2s/io/dataset.hpp>
 #include <l2s/io/image_io.hpp>
 #include <l2s/metrics.hpp>
-#include <l2s/overlay.hpp>
+#include <l2s/viz/overlay.hpp>
 #include <l2s/pose.hpp>
 
 #include <cmath>

@@ -7,6 +7,7 @@
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/viz/inspection_images.hpp>
 #include <l2s/io/calibrator_yaml.hpp>
 #include <l2s/io/dataset.hpp>
 #include <l2s/io/image_io.hpp>
