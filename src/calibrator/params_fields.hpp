@@ -150,6 +150,7 @@ void visit(V& v, CenterAccumulator::Params& p) {
   v.field("max_cluster_fraction", p.max_cluster_fraction);
   v.field("min_frames", p.min_frames);
   v.choice("estimator", p.estimator, {{E::Mean, "mean"}, {E::GeometricMedian, "geometric_median"}});
+  v.field("align_labels", p.align_labels);
 }
 
 template <class V>
