@@ -47,9 +47,14 @@ cv::Mat rectified_left_gray(const Image& left, const StereoCamera& cameras) {
   return rectified;
 }
 
-EdgeDistanceMap edge_distance_map(const cv::Mat& gray, double canny_low, double canny_high) {
+cv::Mat canny_edges(const cv::Mat& gray, double canny_low, double canny_high) {
   cv::Mat edges;
   cv::Canny(gray, edges, canny_low, canny_high, 3, true);
+  return edges;
+}
+
+EdgeDistanceMap edge_distance_map(const cv::Mat& gray, double canny_low, double canny_high) {
+  const cv::Mat edges = canny_edges(gray, canny_low, canny_high);
   EdgeDistanceMap map;
   map.width = gray.cols;
   map.height = gray.rows;

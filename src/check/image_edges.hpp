@@ -14,6 +14,9 @@ namespace l2s::detail {
 /// (plumb_bob or equidistant).
 cv::Mat rectified_left_gray(const Image& left, const StereoCamera& cameras);
 
+/// Canny edges of an 8-bit gray image (255 on edges), thresholds in gray levels.
+cv::Mat canny_edges(const cv::Mat& gray, double canny_low, double canny_high);
+
 /// Canny edges (hysteresis thresholds [gray levels]) and, for every pixel,
 /// the distance to the nearest edge pixel, quantised as EdgeDistanceMap says.
 EdgeDistanceMap edge_distance_map(const cv::Mat& gray, double canny_low, double canny_high);

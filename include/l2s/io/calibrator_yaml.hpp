@@ -20,7 +20,9 @@ void write_calibrator_params(const std::string& path, const Calibrator::Params& 
 
 /// Writes a calibration result atomically: T_lidar_camera (DATASET.md), its
 /// inverse, quaternion, roll/pitch/yaw, ROS static_transform_publisher
-/// arguments for both directions, centroids, residuals and per-frame diagnostics.
+/// arguments for both directions, centroids, residuals, the `quality`
+/// section of the scene check (verdict, reasons, scores, per-DoF peaks,
+/// alternatives; when result.checked) and per-frame diagnostics.
 void write_calibration_result(const std::string& path, const Calibrator::Result& result,
                               const std::string& dataset = "", const std::string& preset = "");
 
