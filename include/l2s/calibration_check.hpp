@@ -63,7 +63,12 @@ class CalibrationCheck {
     double failed_outside_fraction = 0.3;   ///< >= suspect_outside_fraction
     double suspect_alignment_gain = 0.3;    ///< the best edge score of any scan beats this transform's by this share, (0, 1)
     double failed_alignment_gain = 0.6;     ///< >= suspect_alignment_gain
+    double suspect_depth_tilt_deg = 1.5;    ///< [deg] lidar against stereo depth off the board (coarse stereo alone tilts up to ~1.1 deg), > 0
+    double failed_depth_tilt_deg = 2.5;     ///< [deg] >= suspect_depth_tilt_deg
+    double suspect_depth_bias = 0.05;   ///< lidar against stereo depth, as a share of the depth (coarse stereo alone is off by up to ~2 % far away), > 0
+    double failed_depth_bias = 0.15;    ///< >= suspect_depth_bias
     int min_edge_points = 60;         ///< fewer lidar edges seen in the images is too little evidence (suspect), >= 1
+    int min_scene_edge_points = 12;   ///< edges off the board needed to align them on their own, >= 1
     double min_prominence = 0.15;     ///< rx and ry must peak at least this far above the scan's median (share of the peak), else suspect, 0..1
     double hypothesis_margin = 0.06;  ///< an alternative needs this much more scene support to be preferred; closer, the result is ambiguous, > 0
 
@@ -79,9 +84,11 @@ class CalibrationCheck {
     int scene_edge_points = 0;      ///< of which off the board
     double depth_agreement = kNaN;  ///< share of lidar returns with stereo depth at their pixel that agree with it, 0..1
     int depth_points = 0;           ///< lidar returns compared with stereo
-    double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's board plane (+: in front)
+    double depth_bias = kNaN;       ///< median (lidar - stereo) / stereo depth of the returns within 20 %: a scale error (target size, baseline) or a shift along the view
+    double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this: a rotation error about the camera's x / y axes, whatever the translation
+    double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's stereo board plane (+: in front)
     double plane_spread = kNaN;     ///< [m] robust sigma of those distances
-    double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the camera's
+    double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one
     double outline_px = kNaN;       ///< [px] median distance, in the image, of lidar board edges from the outline and hole rims
     double outside_fraction = kNaN; ///< share of lidar board returns outside the board (or inside a hole)
     double support = 0.0;           ///< scene support, what hypotheses are compared by: edge_score + depth_agreement + (1 - outside_fraction) at the best alignment of the edges near the transform, of those there is evidence for, 0..3
@@ -116,6 +123,12 @@ class CalibrationCheck {
     std::array<DofPeak, 6> peaks;      ///< rx, ry, rz, tx, ty, tz
     double misalignment_px = 0.0;      ///< [px] mean motion of the lidar edges in the image from this transform to the best alignment near it
     double misalignment = 0.0;         ///< [rad] the same as an angle (px / fx): how far the overlay is off
+    /// [rad] For the edges off the board alone (NaN with too few): how much
+    /// nearer to image edges (median, px / fx) an image shift of their own
+    /// brings them, from the best alignment of all. When the board aligns but
+    /// the rest of the scene does not, the board moved between the lidar
+    /// sweep and the images (unsynchronised sensors) and the fit followed it.
+    double scene_misalignment = std::numeric_limits<double>::quiet_NaN();
     double alignment_gain = 0.0;       ///< the largest best_gain of the six scans: a better alignment farther away, 0..1
     double median_depth = 0.0;         ///< [m] of the scored lidar edges, camera frame
     std::vector<Alternative> alternatives;

@@ -15,6 +15,7 @@
 // Everything is small enough for a calibrator to keep a dozen frames.
 
 #include <l2s/camera.hpp>
+#include <l2s/geometry.hpp>
 #include <l2s/stereo_matcher.hpp>
 #include <l2s/types.hpp>
 
@@ -64,6 +65,10 @@ struct LidarObservation {
 /// The camera side of one frame (the dataset's camera frame, DATASET.md).
 struct CameraObservation {
   std::optional<Eigen::Isometry3d> T_camera_board;  ///< the camera branch's board pose, when it found the board
+  /// The board plane fitted to the stereo points (normal towards the camera):
+  /// metric through the baseline alone, so a wrong target size, which biases
+  /// the pose's depth, does not bias it.
+  std::optional<Plane> stereo_plane;
   EdgeDistanceMap edges;  ///< of the rectified left image; empty when not kept
   DepthMap depth;         ///< coarse stereo depth; empty when none
 };
@@ -91,6 +96,7 @@ class SceneObserver {
     double canny_low = 40.0;      ///< [gray levels] Canny hysteresis, low threshold, > 0
     double canny_high = 100.0;    ///< [gray levels] high threshold, >= canny_low
     double depth_cell = 4.0;      ///< [px] side of a depth-map cell, >= 1
+    double depth_jump_margin = 16.0;  ///< [px] stereo depth this close to a depth jump is dropped (SGBM fattens near surfaces), >= 0
 
     void validate() const;  ///< throws ParamError naming the field
   };

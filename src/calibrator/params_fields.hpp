@@ -173,6 +173,7 @@ void visit(V& v, SceneObserver::Params& p) {
   v.field("canny_low", p.canny_low);
   v.field("canny_high", p.canny_high);
   v.field("depth_cell", p.depth_cell);
+  v.field("depth_jump_margin", p.depth_jump_margin);
 }
 
 template <class V>
@@ -196,7 +197,12 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("failed_outside_fraction", p.failed_outside_fraction);
   v.field("suspect_alignment_gain", p.suspect_alignment_gain);
   v.field("failed_alignment_gain", p.failed_alignment_gain);
+  v.field("suspect_depth_tilt_deg", p.suspect_depth_tilt_deg);
+  v.field("failed_depth_tilt_deg", p.failed_depth_tilt_deg);
+  v.field("suspect_depth_bias", p.suspect_depth_bias);
+  v.field("failed_depth_bias", p.failed_depth_bias);
   v.field("min_edge_points", p.min_edge_points);
+  v.field("min_scene_edge_points", p.min_scene_edge_points);
   v.field("min_prominence", p.min_prominence);
   v.field("hypothesis_margin", p.hypothesis_margin);
 }

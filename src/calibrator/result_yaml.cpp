@@ -86,6 +86,8 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   out << YAML::Key << "scene_edge_points" << YAML::Value << s.scene_edge_points;
   number("depth_agreement", s.depth_agreement);
   out << YAML::Key << "depth_points" << YAML::Value << s.depth_points;
+  number("depth_bias", s.depth_bias);
+  number("depth_tilt_deg", s.depth_tilt * 180.0 / M_PI);
   number("plane_offset_m", s.plane_offset);
   number("plane_spread_m", s.plane_spread);
   number("plane_tilt_deg", s.plane_tilt * 180.0 / M_PI);

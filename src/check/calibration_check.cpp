@@ -101,7 +101,12 @@ void CalibrationCheck::Params::validate() const {
   if (!(suspect_alignment_gain > 0.0 && suspect_alignment_gain < 1.0))
     throw ParamError("suspect_alignment_gain", "must be in (0, 1)");
   ordered(suspect_alignment_gain, failed_alignment_gain, "failed_alignment_gain");
+  positive(suspect_depth_tilt_deg, "suspect_depth_tilt_deg");
+  ordered(suspect_depth_tilt_deg, failed_depth_tilt_deg, "failed_depth_tilt_deg");
+  positive(suspect_depth_bias, "suspect_depth_bias");
+  ordered(suspect_depth_bias, failed_depth_bias, "failed_depth_bias");
   if (min_edge_points < 1) throw ParamError("min_edge_points", "must be >= 1");
+  if (min_scene_edge_points < 1) throw ParamError("min_scene_edge_points", "must be >= 1");
   if (!(min_prominence >= 0.0 && min_prominence <= 1.0)) throw ParamError("min_prominence", "must be in [0, 1]");
   positive(hypothesis_margin, "hypothesis_margin");
 }
@@ -151,6 +156,8 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
     report.misalignment_px = alignment.motion_px;
     report.misalignment = alignment.motion_px / view.fx;
     report.alignment_gain = alignment.gain;
+    if (report.scores.scene_edge_points >= params_.min_scene_edge_points)
+      report.scene_misalignment = detail::scene_motion(scorer, T_camera_lidar, view, depth, params_) / view.fx;
   }
   detail::judge(report, params_, view.fx);
   report.milliseconds =

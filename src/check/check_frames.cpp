@@ -25,6 +25,7 @@ CameraObservation observe_camera(const Image& left, const CameraInspection& insp
       out.T_camera_board = inspection.refined->T_camera_board;
     else if (inspection.T_camera_board_initial)
       out.T_camera_board = *inspection.T_camera_board_initial;
+    if (inspection.board.size() >= 3) out.stereo_plane = inspection.board_plane;
   }
   // The whole frame's disparity: the coarse pass when the board was located
   // first (the full-resolution pass then covers its region only).

@@ -22,7 +22,9 @@ void describe_scores(std::ostringstream& out, const CalibrationCheck::Scores& s,
       << line("edges      %.3f of %.0f lidar edges on image edges; off the board %.3f of %.0f\n", s.edge_score,
               s.edge_points, s.scene_edge_score, s.scene_edge_points);
   if (std::isfinite(s.depth_agreement))
-    out << indent << line("depth      %.3f of %.0f lidar returns agree with stereo\n", s.depth_agreement, s.depth_points);
+    out << indent
+        << line("depth      %.3f of %.0f lidar returns agree with stereo; bias %+.1f %%, tilt off the board %.2f deg\n",
+                s.depth_agreement, s.depth_points, 100.0 * s.depth_bias, s.depth_tilt / kDeg);
   if (std::isfinite(s.plane_offset))
     out << indent
         << line("board      plane offset %+.1f mm (spread %.1f mm), tilt %.2f deg\n", s.plane_offset * 1e3,

@@ -67,15 +67,17 @@ Eigen::Matrix<double, 2, 6> projection_jacobian(const LeftView& view, const Eige
   return d_rect * view.R_rect_camera * d_camera;
 }
 
-/// One damped Gauss-Newton step of the Cauchy-weighted chamfer cost.
+/// One damped Gauss-Newton step of the Cauchy-weighted chamfer cost (of
+/// the edges off the board alone when `scene_only`).
 Vector6d chamfer_step(const SceneScorer& scorer, const LeftView& view, const Eigen::Isometry3d& T_camera_lidar,
-                      double scale) {
+                      double scale, bool scene_only, const Vector6d& mask) {
   Matrix6d H = Matrix6d::Zero();
   Vector6d g = Vector6d::Zero();
   const LidarProjector projector(view, T_camera_lidar);
   for (const CheckFrame* frame : scorer.scored_edge_frames())
     for (const auto* edges : {&frame->lidar.board_edges, &frame->lidar.scene_edges})
       for (const auto& e : *edges) {
+        if (scene_only && edges != &frame->lidar.scene_edges) break;
         double u, v, d;
         Eigen::Vector2d gradient;
         if (!projector.project(e, u, v) || !distance_and_gradient(frame->camera.edges, u, v, d, gradient)) continue;
@@ -85,6 +87,9 @@ Vector6d chamfer_step(const SceneScorer& scorer, const LeftView& view, const Eig
         g += w * J.transpose() * d;
       }
   H.diagonal() += 0.1 * H.diagonal() + Vector6d::Constant(1e-9);
+  // Degrees of freedom left out stay put: their rows and columns decouple.
+  for (int k = 0; k < 6; ++k)
+    if (mask[k] == 0.0) H.row(k).setZero(), H.col(k).setZero(), H(k, k) = 1.0, g[k] = 0.0;
   return -H.ldlt().solve(g);
 }
 
@@ -102,12 +107,18 @@ struct Steps {
 
 /// The twist that moves T_camera_lidar to the best alignment near it.
 Vector6d chamfer_optimum(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar, const LeftView& view,
-                         double depth, const CalibrationCheck::Params& params) {
+                         double depth, const CalibrationCheck::Params& params, bool scene_only = false) {
+  // The edges off the board are few (a box or a post, the same in every
+  // frame of a static scene): they can fix an image shift (rx, ry), not six
+  // degrees of freedom.
+  Vector6d mask = Vector6d::Ones();
+  if (scene_only) mask << 1, 1, 0, 0, 0, 0;
   // Coarse to fine: the Cauchy scale shrinks from 8 sigmas to one.
   Vector6d optimum = Vector6d::Zero();
   for (double scale = 8.0; scale >= 1.0; scale *= 0.5)
     for (int iteration = 0; iteration < 4; ++iteration) {
-      const Vector6d step = chamfer_step(scorer, view, moved_by(optimum, T_camera_lidar), scale * params.edge_sigma_px);
+      const Vector6d step =
+          chamfer_step(scorer, view, moved_by(optimum, T_camera_lidar), scale * params.edge_sigma_px, scene_only, mask);
       optimum += step;  // small steps compose additively well enough
       if (step.head<3>().norm() * view.fx < 0.01 && step.tail<3>().norm() * view.fx / depth < 0.01) break;
     }
@@ -115,7 +126,7 @@ Vector6d chamfer_optimum(const SceneScorer& scorer, const Eigen::Isometry3d& T_c
   // damping on a flat score must not count as motion).
   const auto score = [&](const Eigen::Isometry3d& T) {
     const EdgeSums sums = scorer.edges(T);
-    return sums.board + sums.scene;
+    return scene_only ? sums.scene : sums.board + sums.scene;
   };
   if (score(moved_by(optimum, T_camera_lidar)) < score(T_camera_lidar)) optimum.setZero();
   return optimum;
@@ -126,6 +137,17 @@ Vector6d chamfer_optimum(const SceneScorer& scorer, const Eigen::Isometry3d& T_c
 Eigen::Isometry3d refine_alignment(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar,
                                    const LeftView& view, double depth, const CalibrationCheck::Params& params) {
   return moved_by(chamfer_optimum(scorer, T_camera_lidar, view, depth, params), T_camera_lidar);
+}
+
+double scene_motion(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar, const LeftView& view,
+                    double depth, const CalibrationCheck::Params& params) {
+  // Measured as how much closer to image edges the shift brings them (their
+  // median distance), not as how far they move: a shift along an edge (a
+  // post's vertical side) is free and says nothing.
+  const Eigen::Isometry3d T_all = refine_alignment(scorer, T_camera_lidar, view, depth, params);
+  const Vector6d optimum = chamfer_optimum(scorer, T_all, view, depth, params, true);
+  const double gained = scorer.median_scene_distance(T_all) - scorer.median_scene_distance(moved_by(optimum, T_all));
+  return std::isfinite(gained) ? std::max(0.0, gained) : 0.0;
 }
 
 EdgeAlignment align_edges(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar, int edge_points,

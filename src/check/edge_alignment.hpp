@@ -24,6 +24,12 @@ struct EdgeAlignment {
 Eigen::Isometry3d refine_alignment(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar,
                                    const LeftView& view, double depth, const CalibrationCheck::Params& params);
 
+/// [px] How much nearer to image edges (median distance) the edges off the
+/// board come when shifted on their own (rotation about the camera's x and
+/// y) from the best alignment of all edges.
+double scene_motion(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar, const LeftView& view,
+                    double depth, const CalibrationCheck::Params& params);
+
 /// refine_alignment, then scans of each degree of freedom around the
 /// optimum. `edge_points` normalises the score.
 EdgeAlignment align_edges(const SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar, int edge_points,

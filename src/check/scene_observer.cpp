@@ -8,6 +8,8 @@
 #include "check/lidar_discontinuities.hpp"
 #include "plane/plane_fit.hpp"
 
+#include <opencv2/imgproc.hpp>
+
 #include <l2s/error.hpp>
 
 #include <cmath>
@@ -57,6 +59,29 @@ class BoardRegion {
   double radius_ = 0.0;
 };
 
+/// Clears the cells within `margin_px` of a depth jump (10 %): SGBM's
+/// window carries a near surface's disparity a few pixels over the far one
+/// beside it (foreground fattening), so stereo there is biased towards the
+/// camera.
+void drop_near_jumps(DepthMap& map, double margin_px) {
+  const int radius = static_cast<int>(std::ceil(margin_px / map.cell));
+  if (radius <= 0 || map.empty()) return;
+  cv::Mat depth(map.height, map.width, CV_32F, map.depth.data());
+  cv::Mat valid = depth == depth;  // NaN compares unequal
+  cv::Mat low = depth.clone(), high = depth.clone();
+  low.setTo(1e9f, ~valid);
+  high.setTo(0.0f, ~valid);
+  const cv::Mat window = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1));
+  cv::erode(low, low, window);
+  cv::dilate(high, high, window);
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) {
+      float& z = map.depth[static_cast<std::size_t>(j) * map.width + i];
+      if (std::isfinite(z) && high.at<float>(j, i) - low.at<float>(j, i) > 0.1f * z)
+        z = std::numeric_limits<float>::quiet_NaN();
+    }
+}
+
 }  // namespace
 
 double EdgeDistanceMap::at(double u, double v) const {
@@ -84,6 +109,7 @@ void SceneObserver::Params::validate() const {
   if (!(canny_low > 0.0)) throw ParamError("canny_low", "must be > 0");
   if (!(canny_high >= canny_low)) throw ParamError("canny_high", "must be >= canny_low");
   if (!(depth_cell >= 1.0)) throw ParamError("depth_cell", "must be >= 1");
+  if (!(depth_jump_margin >= 0.0)) throw ParamError("depth_jump_margin", "must be >= 0");
 }
 
 SceneObserver::SceneObserver() : SceneObserver(Params{}) {}
@@ -118,6 +144,7 @@ DepthMap SceneObserver::observe_depth(const DisparityMap& disparity, const Stere
   DepthMap out;
   if (disparity.empty()) return out;
   const double fB = cameras.left.fx() * cameras.baseline();
+  const double d_infinity = cameras.left.cx() - cameras.right.cx();  // principal points apart: disparity of a point at infinity
   out.cell = params_.depth_cell;
   out.width = static_cast<int>(std::ceil(cameras.left.width / out.cell));
   out.height = static_cast<int>(std::ceil(cameras.left.height / out.cell));
@@ -131,8 +158,10 @@ DepthMap SceneObserver::observe_depth(const DisparityMap& disparity, const Stere
       const long dj = std::lround((v - disparity.y0 + 0.5) * disparity.row_scale - 0.5);
       if (di < 0 || dj < 0 || di >= disparity.width || dj >= disparity.height) continue;
       const float d = disparity.at(static_cast<int>(di), static_cast<int>(dj));
-      if (std::isfinite(d) && d > 0.0f) out.depth[static_cast<std::size_t>(j) * out.width + i] = static_cast<float>(fB / d);
+      if (std::isfinite(d) && d > d_infinity)
+        out.depth[static_cast<std::size_t>(j) * out.width + i] = static_cast<float>(fB / (d - d_infinity));
     }
+  drop_near_jumps(out, params_.depth_jump_margin);
   return out;
 }
 

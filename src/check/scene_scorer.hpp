@@ -35,7 +35,11 @@ class SceneScorer {
   void board(const Eigen::Isometry3d& T_camera_lidar, CalibrationCheck::Scores& scores) const;
   /// [px] mean image motion of the scored edges (those in the image under
   /// A) between transforms A and B.
-  double mean_motion(const Eigen::Isometry3d& A_camera_lidar, const Eigen::Isometry3d& B_camera_lidar) const;
+  double mean_motion(const Eigen::Isometry3d& A_camera_lidar, const Eigen::Isometry3d& B_camera_lidar,
+                     bool scene_only = false) const;
+  /// [px] Median distance of the scored edges off the board from the
+  /// nearest image edge (saturates at 63.75 px); NaN when none is in the image.
+  double median_scene_distance(const Eigen::Isometry3d& T_camera_lidar) const;
   /// [m] median camera depth of the scored edges.
   double median_edge_depth(const Eigen::Isometry3d& T_camera_lidar) const;
 
@@ -45,6 +49,13 @@ class SceneScorer {
   int board_frames() const { return static_cast<int>(board_frames_.size()); }
 
  private:
+  struct PlaneFit {
+    double offset = 0.0;  // [m] median height of the lidar board returns over the camera's plane
+    double spread = 0.0;  // [m] their robust sigma
+    double tilt = 0.0;    // [rad] their plane against the camera's
+  };
+  PlaneFit plane_fit(const CheckFrame& frame, const Eigen::Isometry3d& T_camera_lidar) const;
+
   const std::vector<CheckFrame>& frames_;
   const LeftView& view_;
   const Target& target_;

@@ -40,6 +40,14 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
   j.grade(s.outline_px / fx, p.suspect_outline_deg * kDeg, p.failed_outline_deg * kDeg,
           format("lidar board edges lie %.1f px (%.2f deg) from the board's outline and hole rims", s.outline_px,
                  s.outline_px / fx / kDeg));
+  j.grade(s.depth_tilt, p.suspect_depth_tilt_deg * kDeg, p.failed_depth_tilt_deg * kDeg,
+          format("off the board, lidar depths tilt %.2f deg against the stereo depths (a rotation error; the board "
+                 "may have moved between the lidar sweep and the images)",
+                 s.depth_tilt / kDeg));
+  j.grade(s.depth_bias, p.suspect_depth_bias, p.failed_depth_bias,
+          format("lidar depths are %+.1f %% off the stereo depths (a wrong target size or baseline, or a shift along "
+                 "the view)",
+                 100.0 * s.depth_bias));
   j.grade(s.outside_fraction, p.suspect_outside_fraction, p.failed_outside_fraction,
           format("%.0f %% of the lidar board returns fall outside the board's outline or inside a hole "
                  "(wrong transform, or a target.yaml that is not the board)",
@@ -67,6 +75,10 @@ void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Para
   j.grade(r.misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
           format("the lidar edges align best with the image %.1f px (%.2f deg) away", r.misalignment_px,
                  r.misalignment / kDeg));
+  j.grade(r.scene_misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
+          format("the lidar edges off the board align best with the image %.2f deg away, while the board's align: "
+                 "the board moved between the lidar sweep and the images (sensors not synchronised?)",
+                 r.scene_misalignment / kDeg));
   j.grade(r.peaks[2].offset, p.suspect_roll_deg * kDeg, p.failed_roll_deg * kDeg,
           format("the lidar edges align best with the image rolled %+.2f deg about the optical axis",
                  r.peaks[2].offset / kDeg));
