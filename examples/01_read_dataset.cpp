@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < dataset.size(); ++i) {
       const auto frame = dataset.load(i);
       std::cout << frame.stem << ": " << frame.lidar.size() << " lidar points"
-                << (frame.rings_recovered ? " (rings recovered)" : "") << "\n";
+                << (frame.rings_recovered() ? " (rings recovered)" : "") << "\n";
     }
   } catch (const l2s::Error& error) {
     std::cerr << "error: " << error.what() << "\n";

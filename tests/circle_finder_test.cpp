@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 
 namespace l2s {
 namespace {
@@ -110,6 +111,23 @@ TEST(CircleFinder, OneOccludedHoleGivesReason) {
                          result.reason.find("hole pattern") != std::string::npos;
   EXPECT_TRUE(explained) << result.reason;
   EXPECT_GE(result.candidates.size(), 3u);
+}
+
+TEST(CircleFinder, GradientVotesStayBoundedOnAWallWideSpreadOfEdges) {
+  // A wrong plane candidate (a wall, the ground) can spread its edge points over kilometres (far
+  // returns, grazing rays); the vote grid must coarsen instead of allocating a cell per 2 mm (a CI crash once).
+  const Scene scene;
+  std::vector<Eigen::Vector3d> edges = test::exact_hole_edges(scene, test::vlp16());
+  std::vector<Eigen::Vector3d> gradients(edges.size(), Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d far_left = edges.front() + Eigen::Vector3d(0.0, 4000.0, 0.0);
+  const Eigen::Vector3d far_up = edges.front() + Eigen::Vector3d(0.0, 0.0, 3000.0);
+  edges.push_back(far_left);
+  edges.push_back(far_up);
+  edges.push_back(Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  gradients.resize(edges.size(), Eigen::Vector3d::UnitZ());
+  CircleFinder::Result result;
+  EXPECT_NO_THROW(result = CircleFinder().find(edges, scene.visible_plane(), Eigen::Vector3d::UnitZ(),
+                                               scene.target, gradients));
 }
 
 TEST(CircleFinder, WrongTargetGivesReason) {

@@ -191,5 +191,95 @@ TEST(StereoCameraYaml, RejectsPairsThatAreNotRectified) {
   EXPECT_FILE_ERROR(read_stereo_camera(dir.file("none.yaml"), right), dir.file("none.yaml"));
 }
 
+// Raw images: the pair's K, D and R must be able to build rectification maps,
+// and P must still be a rectified pair (the images it produces).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+class RawPair : public ::testing::Test {
+ protected:
+  void write(const std::string& left_text, const std::string& right_text) {
+    test::write_text(left, left_text);
+    test::write_text(right, right_text);
+  }
+  StereoCamera read() { return read_stereo_camera(left, right, ImageKind::Raw); }
+
+  test::TempDir dir;
+  const std::string left = dir.file("left.yaml"), right = dir.file("right.yaml");
+  const std::string right_text = right_of(kRosLeft, "-78.0");
+};
+
+TEST_F(RawPair, ReadsAPairWithDistortionAndRotation) {
+  const std::string rotated = replaced(kRosLeft, "data: [ 1, 0, 0, 0, 1, 0, 0, 0, 1]",
+                                       "data: [ 0.99995, 0, 0.0099998, 0, 1, 0, -0.0099998, 0, 0.99995]");
+  write(rotated, right_text);
+  const StereoCamera cameras = read();
+  EXPECT_EQ(cameras.images, ImageKind::Raw);
+  EXPECT_DOUBLE_EQ(cameras.baseline(), 0.12);
+  EXPECT_NEAR(cameras.left.rectification_matrix(0, 2), 0.0099998, 1e-12);
+  // The same files declared rectified are read too (P is all that counts).
+  EXPECT_EQ(read_stereo_camera(left, right).images, ImageKind::Rectified);
+}
+
+TEST_F(RawPair, AcceptsTheDistortionLengthsOfEachModel) {
+  for (const char* data : {"rows: 1\n  cols: 4\n  data: [-0.1, 0.01, 0.0001, -0.0002]",
+                           "rows: 1\n  cols: 8\n  data: [-0.1, 0.01, 0, 0, 0, 0, 0, 0]"}) {
+    write(replaced(kRosLeft, "rows: 1\n  cols: 5\n  data: [-0.1, 0.01, 0.0001, -0.0002, 0]", data),
+          right_text);
+    EXPECT_NO_THROW(read()) << data;
+  }
+  const std::string fisheye =
+      replaced(replaced(kRosLeft, "distortion_model: plumb_bob", "distortion_model: equidistant"),
+               "rows: 1\n  cols: 5\n  data: [-0.1, 0.01, 0.0001, -0.0002, 0]",
+               "rows: 1\n  cols: 4\n  data: [0.05, -0.01, 0.002, 0]");
+  write(fisheye, right_text);
+  EXPECT_NO_THROW(read());
+}
+
+TEST_F(RawPair, DistortionThatDoesNotFitItsModelNamesFileAndModel) {
+  write(replaced(kRosLeft, "rows: 1\n  cols: 5\n  data: [-0.1, 0.01, 0.0001, -0.0002, 0]",
+                 "rows: 1\n  cols: 6\n  data: [-0.1, 0.01, 0.0001, -0.0002, 0, 0]"),
+        right_text);
+  EXPECT_FILE_ERROR(read(), left, "6 distortion_coefficients do not fit distortion_model plumb_bob");
+  write(replaced(kRosLeft, "distortion_model: plumb_bob", "distortion_model: equidistant"),
+        right_text);
+  EXPECT_FILE_ERROR(read(), left, "5 distortion_coefficients do not fit distortion_model equidistant");
+  write(kRosLeft, replaced(right_text, "distortion_model: plumb_bob", "distortion_model: fov"));
+  EXPECT_FILE_ERROR(read(), right, "distortion_model 'fov' is not supported");
+  write(replaced(kRosLeft, "rows: 1\n  cols: 5\n  data: [-0.1, 0.01, 0.0001, -0.0002, 0]",
+                 "rows: 1\n  cols: 0\n  data: []"),
+        right_text);
+  EXPECT_FILE_ERROR(read(), left, "0 distortion_coefficients");
+}
+
+TEST_F(RawPair, CameraMatrixMustBeSane) {
+  write(replaced(kRosLeft, "data: [ 704.5, 0, 512.25", "data: [ -704.5, 0, 512.25"), right_text);
+  EXPECT_FILE_ERROR(read(), left, "camera_matrix: fx and fy must be positive");
+  write(kRosLeft, replaced(right_text, "0, 704.5, 384.75, 0, 0, 1]", "0, 704.5, 384.75, 0, 0, 2]"));
+  EXPECT_FILE_ERROR(read(), right, "camera_matrix: expected");
+  write(replaced(kRosLeft, "data: [ 704.5, 0, 512.25", "data: [ 704.5, 0, 1512.25"), right_text);
+  EXPECT_FILE_ERROR(read(), left, "principal point (1512.25, 384.75) lies outside the 1024x768");
+}
+
+TEST_F(RawPair, RectificationMatrixMustBeARotation) {
+  write(replaced(kRosLeft, "data: [ 1, 0, 0, 0, 1, 0, 0, 0, 1]", "data: [ 1, 0, 0, 0, 1, 0, 0, 0, 2]"),
+        right_text);
+  EXPECT_FILE_ERROR(read(), left, "rectification_matrix is not a rotation");
+  write(kRosLeft,
+        replaced(right_text, "data: [ 1, 0, 0, 0, 1, 0, 0, 0, 1]", "data: [ 1, 0, 0, 0, 1, 0, 0, 0, -1]"));
+  EXPECT_FILE_ERROR(read(), right, "rectification_matrix is not a rotation");
+}
+
+TEST_F(RawPair, SizesAndProjectionsMustFormAPair) {
+  write(kRosLeft, replaced(right_text, "image_width: 1024", "image_width: 1280"));
+  EXPECT_FILE_ERROR(read(), right, "image size 1280x768 differs");
+  write(kRosLeft, right_of(kRosLeft, "78.0"));
+  EXPECT_FILE_ERROR(read(), right, "baseline");
+}
+
 }  // namespace
 }  // namespace l2s::io

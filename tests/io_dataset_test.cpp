@@ -3,11 +3,13 @@
 #include <l2s/error.hpp>
 #include <l2s/io/camera_yaml.hpp>
 #include <l2s/io/dataset.hpp>
+#include <l2s/io/dataset_yaml.hpp>
 #include <l2s/io/image_io.hpp>
 #include <l2s/io/pcd.hpp>
 #include <l2s/io/target_yaml.hpp>
 
 #include "io_test_helpers.hpp"
+#include "support/laser_sweep.hpp"
 #include "support/test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -74,7 +76,9 @@ std::string write_dataset(const test::TempDir& dir, const Target& target = Targe
 
 void expect_same_frame(const Frame& read, const Frame& written) {
   EXPECT_EQ(read.stem, written.stem);
-  EXPECT_FALSE(read.rings_recovered);
+  EXPECT_FALSE(read.rings_recovered());
+  EXPECT_EQ(read.ring_source, RingSource::Field);
+  EXPECT_FALSE(read.ring_recovery.has_value());
   ASSERT_EQ(read.lidar.size(), written.lidar.size());
   // Compared as float32, the type in the file (not as double(float(x)): GCC 12
   // -O2 vectorizes that round trip away for pairs of coordinates).
@@ -162,7 +166,10 @@ TEST(Dataset, RecoversRingsWhenTheSweepHasNone) {
   f.lidar.ring.clear();
   writer.write(f);
   const Frame read = Dataset::open(dir.file("data")).load(0);
-  EXPECT_TRUE(read.rings_recovered);
+  EXPECT_TRUE(read.rings_recovered());
+  EXPECT_EQ(read.ring_source, RingSource::LaserModel);
+  ASSERT_TRUE(read.ring_recovery.has_value());
+  EXPECT_EQ(read.ring_recovery->rings, 16);
   ASSERT_EQ(read.lidar.ring.size(), truth.size());
   for (std::size_t i = 0; i < truth.size(); ++i) {
     if (read.lidar.points[i].allFinite()) {
@@ -251,6 +258,98 @@ TEST(Dataset, BrokenFrameFilesAreFileErrorsNamingThem) {
   EXPECT_FILE_ERROR(dataset.load(2), dataset.lidar_path("000002"), "no field z");
   test::write_text(dataset.lidar_path("000002"), std::string(100, '\x01'));
   EXPECT_FILE_ERROR(dataset.load(2), dataset.lidar_path("000002"));
+}
+
+StereoCamera raw_cameras() {
+  StereoCamera raw = cameras();
+  raw.images = ImageKind::Raw;
+  for (CameraInfo* camera : {&raw.left, &raw.right}) {
+    camera->distortion_coefficients = {-0.2, 0.05, 0.001, -0.001, 0.0};
+    camera->camera_matrix(0, 2) = 32.5;  // K is the raw camera's, not P's
+  }
+  return raw;
+}
+
+TEST(DatasetWriter, RawCamerasGetADatasetYaml) {
+  test::TempDir dir;
+  const DatasetWriter writer(dir.file("raw"), raw_cameras(), Target{});
+  writer.write(frame("000000", 0));
+  EXPECT_EQ(read_dataset_info(dir.file("raw/dataset.yaml")).images, ImageKind::Raw);
+  const Dataset dataset = Dataset::open(dir.file("raw"));
+  EXPECT_EQ(dataset.cameras().images, ImageKind::Raw);
+  EXPECT_TRUE(dataset.has_dataset_file());
+  EXPECT_TRUE(dataset.warnings().empty());
+  EXPECT_EQ(dataset.cameras().left.distortion_coefficients,
+            raw_cameras().left.distortion_coefficients);
+
+  // A rectified dataset written into the same folder does not keep it.
+  const DatasetWriter rectified(dir.file("raw"), cameras(), Target{});
+  EXPECT_FALSE(fs::exists(dir.file("raw/dataset.yaml")));
+  EXPECT_EQ(Dataset::open(dir.file("raw")).cameras().images, ImageKind::Rectified);
+}
+
+TEST(DatasetWriter, RefusesARawPairThatCannotBeRectified) {
+  test::TempDir dir;
+  StereoCamera raw = raw_cameras();
+  raw.left.distortion_model = "rational_polynomial";
+  EXPECT_FILE_ERROR(DatasetWriter(dir.file("a"), raw, Target{}), dir.file("a/left.yaml"),
+                    "distortion_model 'rational_polynomial'");
+}
+
+TEST(Dataset, WarnsWhenRectifiedImagesComeWithDistortion) {
+  test::TempDir dir;
+  const std::string folder = write_dataset(dir);
+  EXPECT_TRUE(Dataset::open(folder).warnings().empty());
+  CameraInfo left = cameras().left;
+  left.distortion_coefficients = {-0.2, 0.05, 0.0, 0.0, 0.0};
+  write_camera_info(folder + "/left.yaml", left);
+  CameraInfo right = cameras().right;
+  right.rectification_matrix = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  write_camera_info(folder + "/right.yaml", right);
+  const Dataset dataset = Dataset::open(folder);
+  ASSERT_EQ(dataset.warnings().size(), 2u);
+  EXPECT_NE(dataset.warnings()[0].find(folder + "/left.yaml: distortion_coefficients are not zero"),
+            std::string::npos)
+      << dataset.warnings()[0];
+  EXPECT_NE(dataset.warnings()[0].find("images: raw"), std::string::npos);
+  EXPECT_NE(dataset.warnings()[1].find(folder + "/right.yaml: rectification_matrix is not the identity"),
+            std::string::npos)
+      << dataset.warnings()[1];
+  // Declared raw, the same folder is what it says: no warning.
+  test::write_text(folder + "/dataset.yaml", "images: raw\n");
+  EXPECT_TRUE(Dataset::open(folder).warnings().empty());
+}
+
+TEST(Dataset, DatasetYamlErrorsNameTheFile) {
+  test::TempDir dir;
+  const std::string folder = write_dataset(dir);
+  test::write_text(folder + "/dataset.yaml", "images: raww\n");
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/dataset.yaml", "images: 'raww'");
+  test::write_text(folder + "/dataset.yaml", "imagse: raw\n");
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/dataset.yaml", "unknown key 'imagse'");
+  // Raw images need a pair that can be rectified: this one has 3 coefficients.
+  test::write_text(folder + "/dataset.yaml", "images: raw\n");
+  CameraInfo left = cameras().left;
+  left.distortion_coefficients = {-0.2, 0.05, 0.0};
+  write_camera_info(folder + "/left.yaml", left);
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/left.yaml", "3 distortion_coefficients");
+}
+
+// An organised sweep without a ring field: its rows are its rings.
+TEST(Dataset, TakesRingsFromTheRowsOfAnOrganisedSweep) {
+  test::TempDir dir;
+  const std::string folder = write_dataset(dir);
+  test::OrganisedSweep sweep = test::corridor_sweep(test::vlp16_table(), {});
+  write_pcd(folder + "/lidar/000001.pcd", sweep.cloud, PcdEncoding::Binary, sweep.rows);
+  const Frame read = Dataset::open(folder).load(1);
+  EXPECT_EQ(read.ring_source, RingSource::OrganisedRows);
+  ASSERT_TRUE(read.ring_recovery.has_value());
+  EXPECT_EQ(read.ring_recovery->rings, 16);
+  for (std::size_t i = 0; i < read.lidar.size(); ++i) {
+    if (read.lidar.points[i].allFinite()) {
+      ASSERT_EQ(read.lidar.ring[i], i / sweep.columns) << i;
+    }
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 // judges it the same way for every sensor, and ranks the hypotheses that pass.
 
 #include <array>
+#include <limits>
 #include <string>
 
 namespace l2s {
@@ -19,7 +20,11 @@ struct BoardEvidence {
   int outline_open = 0;               ///< samples in a band just outside the board outline that see past the board
   int outline_blocked = 0;            ///< samples in that band that see a surface coplanar with the board
   double fit_rms = 0.0;               ///< [m] rms of the hole rim fit
-  double fit_scale = 0.02;            ///< [m] rim fit rms that halves the score (the circle finder's inlier threshold)
+  double fit_scale = 0.005;           ///< [m] rim fit rms that halves the score (a quarter of the circle finder's inlier threshold)
+  /// Share of the rims predicted by the fitted board that the sensor's own
+  /// data confirm (camera: rim samples that found an image edge in both
+  /// views); NaN when the sensor cannot tell.
+  double rim_support = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Judges the evidence of one board hypothesis.
@@ -32,6 +37,7 @@ class BoardVerifier {
     int min_samples = 5;            ///< a hole (or the outline band) with fewer samples gives no evidence, >= 1
     double min_hole_open = 0.6;     ///< a hole with evidence must see through in at least this share of its samples, 0..1
     double min_outline_open = 0.5;  ///< the outline band, with evidence, must see past the board in at least this share, 0..1
+    double min_rim_support = 0.3;   ///< rim support, when known, must reach this share, 0..1
     double confident_score = 0.5;   ///< a verified hypothesis scoring at least this ends the search, 0..1
     int max_hypotheses = 4;         ///< board-sized planes verified per frame at most, most board-like first, >= 1
 
@@ -48,10 +54,12 @@ class BoardVerifier {
   BoardVerifier();
   explicit BoardVerifier(Params params);
 
-  /// Rejects a hypothesis whose holes (with evidence) are covered or whose
-  /// surface continues beyond the outline; scores the rest by how open the
-  /// holes are, how clear the outline is and how well the rims fit. Missing
-  /// evidence (nothing behind the board in range) neither rejects nor helps.
+  /// Rejects a hypothesis whose holes (with evidence) are covered, whose
+  /// surface continues beyond the outline, or whose rims the data do not
+  /// confirm; scores the rest by how open the holes are, how clear the
+  /// outline is, how well the rims fit and how well they are confirmed.
+  /// Missing evidence (nothing behind the board in range) neither rejects nor
+  /// helps: a hole without evidence counts as half open.
   Verdict judge(const BoardEvidence& evidence) const;
   const Params& params() const { return params_; }
 

@@ -11,6 +11,7 @@
 #include <l2s/center_accumulator.hpp>
 #include <l2s/circle_finder.hpp>
 #include <l2s/discontinuity_filter.hpp>
+#include <l2s/occupancy_edge_filter.hpp>
 #include <l2s/edge_filter.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/pass_through_filter.hpp>
@@ -67,6 +68,8 @@ class Calibrator {
     PassThroughFilter::Params lidar_pass_through;
     PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
     DiscontinuityFilter::Params discontinuity;
+    OccupancyEdgeFilter::Params occupancy;  ///< hole edges of ring-free (accumulated) clouds
+    int ring_free_frames = 20;  ///< ring-free lidars: sweeps of the static board accumulated into one detection (2 s at 10 Hz), >= 1
     CircleFinder::Params lidar_circles;
     BoardVerifier::Params lidar_verifier;  ///< which board-sized plane is the board (holes seen through, outline clear)
     // Camera branch: stereo, pass-through, plane, Sobel edges, circles, rim refinement.
@@ -129,9 +132,12 @@ class Calibrator {
   Calibrator& operator=(Calibrator&&) noexcept;
 
   /// Runs one frame through both branches and accumulates what they found.
-  /// A cloud without `ring` gets rings from elevation angles. Bad frames
-  /// (empty, NaN, no board) are reported, never thrown; images whose size
-  /// differs from the cameras throw ParamError.
+  /// A cloud without `ring` gets rings from elevation angles; a ring-free
+  /// cloud (non-repetitive scan) is accumulated with the next ones, and every
+  /// ring_free_frames sweeps give one lidar detection (the frame that
+  /// completes the window reports it; the others report "accumulating").
+  /// Bad frames (empty, NaN, no board) are reported, never thrown; images
+  /// whose size differs from the cameras throw ParamError.
   FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,
                   const std::string& id = "");
 

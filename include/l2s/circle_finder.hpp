@@ -56,9 +56,13 @@ class CircleFinder {
 
   /// `edges`: edge points in the sensor frame, whose origin is the sensor (each
   /// point's viewing ray is its direction); `plane`: the board plane (either
-  /// normal sign); `up`: the sensor's up axis (lidar +z, camera optical -y).
+  /// normal sign); `up`: the sensor's up axis (lidar +z, camera optical -y);
+  /// `gradients`: optional, one per edge: the direction (in the plane, sensor
+  /// frame) in which the image intensity changes there. With them, circle
+  /// candidates come from gradient votes (robust to a textured board),
+  /// otherwise from pairs of points (sparse lidar edges).
   Result find(const std::vector<Eigen::Vector3d>& edges, const Plane& plane, const Eigen::Vector3d& up,
-              const Target& target = Target{}) const;
+              const Target& target = Target{}, const std::vector<Eigen::Vector3d>& gradients = {}) const;
   const Params& params() const { return params_; }
 
  private:

@@ -25,8 +25,9 @@ class EdgeFilter {
   struct Params {
     double sobel_threshold = 128.0;  ///< tau_sobel: keep pixels whose magnitude >= this, 0..255
     double adaptive_quantile = 0.98;  ///< the board region's strong edges: this quantile of its magnitudes (rims and outline are a few % of it); 0 = fixed tau_sobel, 0..1
-    double adaptive_fraction = 0.5;   ///< on a low-contrast board the threshold drops to this fraction of those strong edges, (0, 1]
+    double adaptive_fraction = 0.5;  ///< on a low-contrast board the threshold drops to this fraction of those strong edges, (0, 1]
     double min_sobel_threshold = 16.0;  ///< ... but never below this, 0..255
+    double noise_factor = 4.0;       ///< ... nor below this many sigmas of the Sobel response to the image's own noise, >= 0
     int region_dilation_px = 3;      ///< [px] the board region is its points' pixels widened by this (stereo leaves the rims themselves unmatched), 0..50
     Magnitude magnitude = Magnitude::Hypot;  ///< scaling of the Sobel magnitude (see enum)
     bool remove_border_lines = true;  ///< drop the outer border of the board (Sec. III-C)
@@ -47,6 +48,7 @@ class EdgeFilter {
     bool found = false;        ///< some edge points survived
     std::string reason;        ///< why not, when !found
     StereoCloud edges;         ///< [m] camera frame: edge points (on the plane) minus border lines, with pixels
+    std::vector<Eigen::Vector3d> gradients;  ///< one per edge point: unit in-plane direction of the image gradient (camera frame)
     std::size_t input_points = 0;   ///< board-plane points given
     std::size_t edge_points = 0;    ///< image edge pixels in the board's region, cast onto the plane
     double sobel_threshold = 0.0;   ///< the threshold used (tau_sobel or the adaptive one)

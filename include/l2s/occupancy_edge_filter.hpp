@@ -3,8 +3,9 @@
 // DiscontinuityFilter. A solid-state lidar with a non-repetitive scan
 // (Livox-like) has no rings to walk along, but a static board accumulated for
 // a second or two is covered densely. Its points, seen in the board plane,
-// form an occupancy image: empty regions enclosed by the board are the holes,
-// and the board points bordering them are the rims.
+// form an occupancy image: places a radius away from any board point, with
+// board all around, are the holes' centres; the board points bordering them
+// are the rims.
 
 #include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
@@ -19,11 +20,10 @@ namespace l2s {
 class OccupancyEdgeFilter {
  public:
   struct Params {
-    double cell_factor = 2.0;    ///< grid cell = this x the board points' mean spacing (from their density), > 0
+    double cell_factor = 1.0;    ///< grid cell = this x the board points' mean spacing (from their density), > 0
     double min_cell = 0.004;     ///< [m] smallest cell, > 0
     double max_cell = 0.04;      ///< [m] largest cell (a sparser board cannot show its holes), >= min_cell
-    double min_hole_area = 0.3;  ///< an enclosed empty region is a hole when its area is at least this share of a hole's ...
-    double max_hole_area = 2.0;  ///< ... and at most this share (larger: a gap in the coverage, not a hole), > min_hole_area
+    double min_hole_depth = 0.5;  ///< a hole's centre is at least this many radii from every board point (in the grid), (0, 1.5)
     int rim_sectors = 90;        ///< directions around each hole; the innermost board point of each is a rim point, >= 8
 
     void validate() const;  ///< throws ParamError naming the field
@@ -35,8 +35,7 @@ class OccupancyEdgeFilter {
     std::vector<Eigen::Vector3d> edges;  ///< [m] rim points, sensor frame (board returns)
     std::size_t board_points = 0;        ///< board points used
     double cell = 0.0;                   ///< [m] occupancy cell
-    int enclosed_regions = 0;            ///< empty regions enclosed by the board
-    int holes = 0;                       ///< of those, hole-sized
+    int holes = 0;                       ///< places found deep enough and surrounded by board
   };
 
   // Two constructors rather than `Params params = {}` (see PlaneSegmenter).

@@ -48,7 +48,8 @@ class PlaneSegmenter {
     double sample_radius = 0.5;        ///< [m] 2nd/3rd sample points come from this neighbourhood, > 0
     double patch_gap_horizontal = 0.3;  ///< [m] in-plane horizontal gap bridged by a patch (> hole diameter), > 0
     double patch_gap_vertical = 0.25;  ///< [m] patch grid cell height: rows this close always join, rows 2x apart never (so the ground 0.5 m below stays apart); >= ring spacing at the board (16 beams: to 7 m), > 0
-    double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height, 0..1
+    double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height (the patch may exceed them by this), 0..1
+    double min_length_fraction = 0.8;  ///< the patch's long side must reach this share of the board's long side (lower for clouds that may see part of it), 0..1
     double min_height_fraction = 0.15;  ///< patch height must reach this fraction of the board height, 0..1
     double isolation_band = 0.2;       ///< [m] width of the band around a patch searched for coplanar points, > 0
     /// [1/m] Stereo clouds: depth noise grows with depth, sigma_z = depth_noise * z^2

@@ -8,17 +8,43 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/stereo_rectifier.hpp>
+
+#include <memory>
 
 namespace l2s::detail {
 
-/// Lidar: rings, pass-through, board plane, depth discontinuities, circles.
+/// Lidar: rings, pass-through, board plane, hole edges, circles. Hole edges
+/// come from depth discontinuities along the rings, or, for a ring-free cloud
+/// (a non-repetitive scan, accumulated), from the board's occupancy.
 /// `trace`, when given, receives every stage's result (its report is not set).
 BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params, LidarInspection* trace = nullptr);
 
-/// Camera: SGM stereo, pass-through, board plane, Sobel edges, circles, and
-/// (default preset) the board pose fitted to the hole rims in both images.
-BranchReport run_camera_branch(const Image& left, const Image& right, const StereoCamera& cameras,
+/// Does this sweep lack a usable ring structure (no ring field, and none to
+/// recover from its elevations)? Such sweeps are accumulated, then detected
+/// as one ring-free cloud.
+bool is_ring_free(const LidarCloud& sweep);
+
+/// The sweeps of a static board as one ring-free cloud: each sweep's points
+/// inside the lidar pass-through (ring and intensity dropped).
+LidarCloud accumulate_ring_free(const std::vector<const LidarCloud*>& sweeps, const Calibrator::Params& params);
+
+/// The cameras as the camera branch works with them: rectified. For raw
+/// images, the rectifier (its maps are built once) and the rectified pair.
+struct CameraSetup {
+  StereoCamera cameras;                         ///< rectified: what the stages use
+  std::shared_ptr<const StereoRectifier> rectifier;  ///< set for raw images
+
+  /// Throws ParamError for cameras a rectifier cannot be built for.
+  explicit CameraSetup(const StereoCamera& given);
+};
+
+/// Camera: (raw images: rectification), SGM stereo, board plane, Sobel edges,
+/// circles, and (default preset) the board pose fitted to the hole rims in
+/// both images. The centres come in the camera frame of DATASET.md: for raw
+/// images the physical left camera's, not the rectified frame.
+BranchReport run_camera_branch(const Image& left, const Image& right, const CameraSetup& setup,
                                const Target& target, const Calibrator::Params& params,
                                CameraInspection* trace = nullptr);
 

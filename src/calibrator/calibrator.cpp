@@ -42,6 +42,7 @@ CameraObservation observation_from_centers(const HoleCenters& centers) {
 
 struct Calibrator::Impl {
   StereoCamera cameras;
+  detail::CameraSetup camera_setup;  // rectified cameras (and the rectifier for raw images)
   Target target;
   Params params;
   CenterAccumulator lidar_centers;
@@ -49,6 +50,32 @@ struct Calibrator::Impl {
   std::vector<FrameReport> frames;
   SceneObserver observer;
   detail::CheckFrameKeeper check_frames;
+  std::vector<LidarCloud> ring_free_window;  // ring-free sweeps waiting for a detection (pass-through applied)
+
+  // The lidar branch of one sweep: at once for a ring lidar; for a ring-free
+  // one, when ring_free_frames sweeps of the static board are together.
+  // `trace` receives the stages of the detection, when one ran (for a
+  // ring-free lidar: of the accumulated window).
+  BranchReport lidar_branch(const LidarCloud& sweep, LidarInspection* trace) {
+    if (!detail::is_ring_free(sweep))
+      return timed([&] { return detail::run_lidar_branch(sweep, target, params, trace); });
+    const auto start = std::chrono::steady_clock::now();
+    ring_free_window.push_back(detail::accumulate_ring_free({&sweep}, params));
+    BranchReport report;
+    const auto count = static_cast<int>(ring_free_window.size());
+    if (count < params.ring_free_frames) {
+      report.failed_stage = "accumulating";
+      report.reason = "ring-free sweep " + std::to_string(count) + " of " + std::to_string(params.ring_free_frames) +
+                      " accumulated";
+    } else {
+      std::vector<const LidarCloud*> window;
+      for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
+      report = detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params, trace);
+      ring_free_window.clear();
+    }
+    report.milliseconds = milliseconds_since(start);
+    return report;
+  }
 
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
@@ -119,6 +146,7 @@ struct Calibrator::Impl {
 
   Impl(StereoCamera c, Target t, Params p)
       : cameras(std::move(c)),
+        camera_setup(cameras),
         target(t),
         params(std::move(p)),
         lidar_centers(params.accumulator),
@@ -140,17 +168,15 @@ Calibrator& Calibrator::operator=(Calibrator&&) noexcept = default;
 FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Image& right,
                             const std::string& id) {
   const auto start = std::chrono::steady_clock::now();
-  const Impl& impl = *impl_;
+  Impl& impl = *impl_;
   // The traces cost nothing extra (the branches keep their stages in them
   // either way); the check observes the frames it keeps from them.
   LidarInspection lidar_trace;
   CameraInspection camera_trace;
-  const auto lidar_branch = [&] {
-    return timed([&] { return detail::run_lidar_branch(lidar, impl.target, impl.params, &lidar_trace); });
-  };
+  const auto lidar_branch = [&] { return impl.lidar_branch(lidar, &lidar_trace); };
   const auto camera_branch = [&] {
     return timed([&] {
-      return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params, &camera_trace);
+      return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &camera_trace);
     });
   };
 
@@ -180,7 +206,7 @@ BranchReport Calibrator::camera_branch(const Image& left, const Image& right) co
   const Impl& impl = *impl_;
   CameraInspection trace;
   BranchReport report = timed([&] {
-    return detail::run_camera_branch(left, right, impl.cameras, impl.target, impl.params, &trace);
+    return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &trace);
   });
   if (impl.params.check_result && report.found)
     report.observation = std::make_shared<const CameraObservation>(
@@ -191,8 +217,7 @@ BranchReport Calibrator::camera_branch(const Image& left, const Image& right) co
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
   LidarInspection lidar_trace;
-  report.lidar =
-      timed([&] { return detail::run_lidar_branch(lidar, impl_->target, impl_->params, &lidar_trace); });
+  report.lidar = impl_->lidar_branch(lidar, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
   const auto observe = [&](const std::string& name) {
@@ -220,6 +245,7 @@ void Calibrator::reset() {
   impl_->camera_centers.reset();
   impl_->frames.clear();
   impl_->check_frames.reset();
+  impl_->ring_free_window.clear();
 }
 
 const std::vector<CheckFrame>& Calibrator::check_frames() const { return impl_->check_frames.frames(); }

@@ -67,6 +67,7 @@ void Calibrator::Params::validate() const {
   validate_field("lidar_pass_through", [&] { lidar_pass_through.validate(); });
   validate_field("lidar_plane", [&] { lidar_plane.validate(); });
   validate_field("discontinuity", [&] { discontinuity.validate(); });
+  validate_field("occupancy", [&] { occupancy.validate(); });
   validate_field("lidar_circles", [&] { lidar_circles.validate(); });
   validate_field("lidar_verifier", [&] { lidar_verifier.validate(); });
   validate_field("stereo", [&] { stereo.validate(); });
@@ -79,6 +80,7 @@ void Calibrator::Params::validate() const {
   validate_field("accumulator", [&] { accumulator.validate(); });
   validate_field("registrar", [&] { registrar.validate(); });
   if (min_frames < 1) throw ParamError("min_frames", "must be >= 1");
+  if (ring_free_frames < 1) throw ParamError("ring_free_frames", "must be >= 1");
   if (check_frames < 1) throw ParamError("check_frames", "must be >= 1");
   validate_field("observer", [&] { observer.validate(); });
   validate_field("check", [&] { check.validate(); });

@@ -55,6 +55,8 @@ struct CameraAttempt {
   Plane plane;
   EdgeFilter::Result edges;
   CircleFinder::Result circles;
+  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  // from the circles
+  std::optional<BoardPoseRefiner::Result> refined;                    // default preset
 };
 
 /// The frame-wide data every hypothesis of one pair is tested against.
@@ -82,11 +84,18 @@ class CameraHypothesisTester {
     const bool ok = collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis);
     if (!first_) first_ = attempt;
     if (!ok) return std::nullopt;
-    hypothesis.evidence = stereo_evidence(f_.left_gray, f_.right_gray, f_.cameras,
-                                          board_pose_from_centers(attempt.circles.centers, attempt.plane),
+    attempt.T_camera_board = board_pose_from_centers(attempt.circles.centers, attempt.plane);
+    hypothesis.evidence = stereo_evidence(f_.left_gray, f_.right_gray, f_.cameras, attempt.T_camera_board,
                                           f_.target, f_.params.camera_verifier);
     hypothesis.evidence.fit_rms = attempt.circles.rms;
-    hypothesis.evidence.fit_scale = f_.params.camera_circles.inlier_threshold;
+    hypothesis.evidence.fit_scale = 0.25 * f_.params.camera_circles.inlier_threshold;
+    // The rim refinement is the sharpest test of a guess: a true board's rims
+    // are edges in both images where the fit predicts them.
+    if (f_.params.refine_camera_pose) {
+      attempt.refined = BoardPoseRefiner(f_.params.board_refiner)
+                            .refine(f_.left, f_.right, f_.cameras, f_.target, attempt.T_camera_board);
+      hypothesis.evidence.rim_support = attempt.refined->edge_fraction;
+    }
     return attempt;
   }
 
@@ -127,7 +136,8 @@ class CameraHypothesisTester {
         EdgeFilter(f_.params.edges).filter(f_.left, f_.cameras.left, attempt.board, attempt.plane, f_.target);
     if (!attempt.edges.found) return stop(hypothesis, "edges", attempt.edges.reason);
     attempt.circles = CircleFinder(f_.params.camera_circles)
-                          .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target);
+                          .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target,
+                                attempt.edges.gradients);
     if (!attempt.circles.found) return stop(hypothesis, "circles", attempt.circles.reason);
     return true;
   }
@@ -146,6 +156,8 @@ void keep_stages(CameraInspection& t, const CameraAttempt& attempt) {
   t.board_plane = attempt.plane;
   if (!attempt.board.points.empty()) t.edges = attempt.edges;
   if (attempt.edges.found) t.circles = attempt.circles;
+  if (attempt.circles.found) t.T_camera_board_initial = attempt.T_camera_board;
+  t.refined = attempt.refined;
 }
 
 /// The candidates of the frame: located at low resolution, or segmented in
@@ -184,32 +196,43 @@ const PlaneSegmenter::Result* find_candidates(const CameraFrame& f, CameraInspec
   return &planes;
 }
 
-/// The default preset's last step: the board pose fitted to the hole rims in both images.
-void refine(const CameraFrame& f, CameraInspection& t, BranchReport& report) {
-  const auto& T_camera_board = t.T_camera_board_initial.emplace(board_pose_from_centers(report.centers, t.board_plane));
-  if (!f.params.refine_camera_pose) return;
-  const auto& refined = t.refined.emplace(
-      BoardPoseRefiner(f.params.board_refiner).refine(f.left, f.right, f.cameras, f.target, T_camera_board));
-  // A refinement that stops on its round limit is usually still close (rms
-  // ~0.1 px); keeping the stereo circles for such frames measured better on
-  // the simulated suite than dropping them, and the accumulator's median
-  // keeps the refined majority in charge.
-  if (refined.converged) {
-    report.centers = refined.centers;
-    report.fit_rms = refined.rms_px;
+/// The default preset's last step: the centres from the board pose fitted to
+/// the hole rims in both images. A refinement that stops on its round limit
+/// is usually still close (rms ~0.1 px); keeping the stereo circles for such
+/// frames measured better on the simulated suite than dropping them, and the
+/// accumulator's median keeps the refined majority in charge.
+void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
+  if (!attempt.refined) return;
+  if (attempt.refined->converged) {
+    report.centers = attempt.refined->centers;
+    report.fit_rms = attempt.refined->rms_px;
   } else {
-    report.note = "rim refinement did not converge (" + refined.reason + "); stereo circles kept";
+    report.note = "rim refinement did not converge (" + attempt.refined->reason + "); stereo circles kept";
   }
 }
 
 }  // namespace
 
-BranchReport run_camera_branch(const Image& left, const Image& right, const StereoCamera& cameras,
+CameraSetup::CameraSetup(const StereoCamera& given) : cameras(given) {
+  if (given.images != ImageKind::Raw) return;
+  rectifier = std::make_shared<const StereoRectifier>(given);
+  cameras = rectifier->rectified();
+}
+
+BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, const CameraSetup& setup,
                                const Target& target, const Calibrator::Params& params,
                                CameraInspection* trace) {
   CameraInspection local;
   CameraInspection& t = trace ? *trace : local;
   BranchReport report;
+  if (setup.rectifier) {
+    RectifiedPair pair = setup.rectifier->rectify(raw_left, raw_right);
+    t.rectified = RectifiedView{std::move(pair.left), std::move(pair.right), setup.cameras,
+                                setup.rectifier->R_rect_camera()};
+  }
+  const Image& left = t.rectified ? t.rectified->left : raw_left;
+  const Image& right = t.rectified ? t.rectified->right : raw_right;
+  const StereoCamera& cameras = setup.cameras;
   const CameraFrame frame{left, right, gray_mat(left, "left"), gray_mat(right, "right"), cameras, target, params};
   const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
   if (!planes) return report;
@@ -229,7 +252,11 @@ BranchReport run_camera_branch(const Image& left, const Image& right, const Ster
   report.hole_radius = best->circles.radius;
   report.centers = best->circles.centers;
   report.found = true;
-  refine(frame, t, report);
+  take_refined_centres(*best, report);
+  if (setup.rectifier) {
+    const Eigen::Isometry3d T_camera_rect = setup.rectifier->T_rect_camera().inverse();
+    for (Eigen::Vector3d& c : report.centers) c = T_camera_rect * c;
+  }
   return report;
 }
 

@@ -212,13 +212,20 @@ LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
   return inspection;
 }
 
+LidarInspection inspect_lidar(const std::vector<LidarCloud>& sweeps, const Target& target,
+                              const Calibrator::Params& params) {
+  std::vector<const LidarCloud*> window;
+  for (const LidarCloud& sweep : sweeps) window.push_back(&sweep);
+  return inspect_lidar(detail::accumulate_ring_free(window, params), target, params);
+}
+
 CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,
                                 const Target& target, const Calibrator::Params& params) {
   params.validate();
   target.validate();
   CameraInspection inspection;
   const auto start = std::chrono::steady_clock::now();
-  inspection.report = detail::run_camera_branch(left, right, cameras, target, params, &inspection);
+  inspection.report = detail::run_camera_branch(left, right, detail::CameraSetup(cameras), target, params, &inspection);
   inspection.report.milliseconds = elapsed_ms(start);
   return inspection;
 }
@@ -254,6 +261,19 @@ std::string describe(const LidarInspection& in, const Calibrator::Params& params
            "hole_gap_tolerance %.2f, max_ring_edges %d, placement %s]\n",
            p.min_discontinuity, p.max_stray_points, p.hole_gap_tolerance, p.max_ring_edges,
            placement_name(p.placement));
+  }
+  if (in.occupancy) {
+    const auto& o = *in.occupancy;
+    const auto& p = params.occupancy;
+    append(out,
+           "  occupancy        ring-free cloud: %zu board points in %.1f mm cells, %d hole(s) -> %zu rim points%s%s\n",
+           o.board_points, o.cell * 1e3, o.holes, o.edges.size(), o.found ? "" : ": ",
+           o.found ? "" : o.reason.c_str());
+    append(out,
+           "                   [occupancy: cell_factor %.1f, cell %.3f..%.3f m, min_hole_depth %.2f radii, "
+           "rim_sectors %d; ring_free_frames %d]\n",
+           p.cell_factor, p.min_cell, p.max_cell, p.min_hole_depth, p.rim_sectors,
+           params.ring_free_frames);
   }
   if (in.circles && in.plane && in.candidate >= 0) {
     const PlaneCandidate& plane = in.plane->candidates[in.candidate];

@@ -2,6 +2,8 @@
 
 #include <l2s/io/ring_recovery.hpp>
 
+#include <optional>
+
 #include "detail/board_frame.hpp"
 #include "verify/cloud_evidence.hpp"
 #include "verify/hypothesis_search.hpp"
@@ -16,36 +18,51 @@ BranchReport fail(BranchReport report, const char* stage, const std::string& rea
   return report;
 }
 
-/// The stages run on one board hypothesis.
+/// The stages run on one board hypothesis; `edges` or `occupancy` by the cloud's kind.
 struct LidarAttempt {
   int candidate = -1;
   DiscontinuityFilter::Result edges;
+  OccupancyEdgeFilter::Result occupancy;
   CircleFinder::Result circles;
 };
 
-/// Discontinuities and circles on one plane candidate, and the evidence for the verifier.
+/// Hole edges (ring discontinuities, or the occupancy of a ring-free cloud)
+/// and circles on one plane candidate, and the evidence for the verifier.
 class LidarHypothesisTester {
  public:
-  LidarHypothesisTester(const LidarCloud& cloud, const PlaneSegmenter::Result& planes, const Target& target,
-                        const Calibrator::Params& params)
+  LidarHypothesisTester(const LidarCloud& cloud, bool ring_free, const PlaneSegmenter::Result& planes,
+                        const Target& target, const Calibrator::Params& params)
       : cloud_(cloud),
+        ring_free_(ring_free),
         planes_(planes),
         target_(target),
         params_(params),
         discontinuity_(params.discontinuity),
+        occupancy_(params.occupancy),
         circles_(params.lidar_circles) {}
 
   std::optional<LidarAttempt> operator()(BoardHypothesis& hypothesis) {
     const PlaneCandidate& plane = planes_.candidates[hypothesis.candidate];
     LidarAttempt attempt;
     attempt.candidate = hypothesis.candidate;
-    attempt.edges = discontinuity_.filter(cloud_, plane.plane, plane.inliers, target_);
-    if (attempt.edges.found)
-      attempt.circles = circles_.find(attempt.edges.edges, plane.plane, Eigen::Vector3d::UnitZ(), target_);
+    const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+    bool found = false;
+    std::string reason;
+    if (ring_free_) {
+      attempt.occupancy = occupancy_.filter(cloud_.points, plane.plane, plane.inliers, up, target_);
+      found = attempt.occupancy.found;
+      reason = attempt.occupancy.reason;
+      if (found) attempt.circles = circles_.find(attempt.occupancy.edges, plane.plane, up, target_);
+    } else {
+      attempt.edges = discontinuity_.filter(cloud_, plane.plane, plane.inliers, target_);
+      found = attempt.edges.found;
+      reason = attempt.edges.reason;
+      if (found) attempt.circles = circles_.find(attempt.edges.edges, plane.plane, up, target_);
+    }
     if (!first_) first_ = attempt;
-    if (!attempt.edges.found) {
-      hypothesis.stage = "discontinuities";
-      hypothesis.reason = attempt.edges.reason;
+    if (!found) {
+      hypothesis.stage = ring_free_ ? "occupancy" : "discontinuities";
+      hypothesis.reason = reason;
       return std::nullopt;
     }
     if (!attempt.circles.found) {
@@ -58,7 +75,7 @@ class LidarHypothesisTester {
                                          board_pose_from_centers(attempt.circles.centers, plane.plane), target_,
                                          params_.lidar_verifier, evidence);
     hypothesis.evidence.fit_rms = attempt.circles.rms;
-    hypothesis.evidence.fit_scale = params_.lidar_circles.inlier_threshold;
+    hypothesis.evidence.fit_scale = 0.25 * params_.lidar_circles.inlier_threshold;
     return attempt;
   }
 
@@ -67,18 +84,23 @@ class LidarHypothesisTester {
 
  private:
   const LidarCloud& cloud_;
+  bool ring_free_;
   const PlaneSegmenter::Result& planes_;
   const Target& target_;
   const Calibrator::Params& params_;
   DiscontinuityFilter discontinuity_;
+  OccupancyEdgeFilter occupancy_;
   CircleFinder circles_;
   std::optional<LidarAttempt> first_;
 };
 
 void keep_stages(LidarInspection& t, const LidarAttempt& attempt) {
   t.candidate = attempt.candidate;
-  t.discontinuities = attempt.edges;
-  if (attempt.edges.found) t.circles = attempt.circles;
+  if (t.ring_free)
+    t.occupancy = attempt.occupancy;
+  else
+    t.discontinuities = attempt.edges;
+  if (attempt.edges.found || attempt.occupancy.found) t.circles = attempt.circles;
 }
 
 }  // namespace
@@ -99,13 +121,16 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   if (cloud.size() < 3)
     return fail(report, "pass_through", "no finite points inside the pass-through limits");
   // Rings are recovered after filtering: the board's rings are what matters, and
-  // fewer points cluster faster.
-  if (!cloud.has_ring()) io::recover_rings(cloud);
+  // fewer points cluster faster. A cloud without a ring structure is ring-free.
+  if (!cloud.has_ring()) {
+    t.ring_free = io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
+    if (!t.ring_free) io::recover_rings(cloud);
+  }
 
   const auto& planes = t.plane.emplace(PlaneSegmenter(params.lidar_plane).segment(cloud.points, target));
   if (!planes.found) return fail(report, "plane", planes.reason);
 
-  LidarHypothesisTester tester(cloud, planes, target, params);
+  LidarHypothesisTester tester(cloud, t.ring_free, planes, target, params);
   const std::optional<LidarAttempt> best =
       search_hypotheses<LidarAttempt>(planes, BoardVerifier(params.lidar_verifier), t.hypotheses, tester);
   report.hypotheses = static_cast<int>(t.hypotheses.size());
@@ -116,12 +141,26 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   }
   keep_stages(t, *best);
   report.plane_inliers = planes.candidates[best->candidate].inliers.size();
-  report.edge_points = best->edges.edges.size();
+  report.edge_points = t.ring_free ? best->occupancy.edges.size() : best->edges.edges.size();
   report.fit_rms = best->circles.rms;
   report.hole_radius = best->circles.radius;
   report.found = true;
   report.centers = best->circles.centers;
   return report;
+}
+
+bool is_ring_free(const LidarCloud& sweep) {
+  // Bad input goes the ordinary way, whose report names the problem.
+  if (sweep.has_ring() || sweep.size() < 3) return false;
+  return io::classify_scan(sweep).structure == io::ScanStructure::RingFree;
+}
+
+LidarCloud accumulate_ring_free(const std::vector<const LidarCloud*>& sweeps, const Calibrator::Params& params) {
+  LidarCloud cloud;
+  const PassThroughFilter pass_through(params.lidar_pass_through);
+  for (const LidarCloud* sweep : sweeps)
+    for (const std::size_t i : pass_through.filter(sweep->points).kept) cloud.points.push_back(sweep->points[i]);
+  return cloud;
 }
 
 }  // namespace l2s::detail

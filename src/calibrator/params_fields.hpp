@@ -33,6 +33,7 @@ void visit(V& v, PlaneSegmenter::Params& p) {
   v.field("patch_gap_vertical", p.patch_gap_vertical);
   v.field("size_tolerance", p.size_tolerance);
   v.field("min_height_fraction", p.min_height_fraction);
+  v.field("min_length_fraction", p.min_length_fraction);
   v.field("isolation_band", p.isolation_band);  // depth_noise: set per frame by the camera branch
   v.field("seed", p.seed);
 }
@@ -47,6 +48,15 @@ void visit(V& v, DiscontinuityFilter::Params& p) {
   v.field("hole_gap_tolerance", p.hole_gap_tolerance);
   v.field("max_ring_edges", p.max_ring_edges);
   v.choice("placement", p.placement, {{P::LastBoardPoint, "last_board_point"}, {P::Midpoint, "midpoint"}});
+}
+
+template <class V>
+void visit(V& v, OccupancyEdgeFilter::Params& p) {
+  v.field("cell_factor", p.cell_factor);
+  v.field("min_cell", p.min_cell);
+  v.field("max_cell", p.max_cell);
+  v.field("min_hole_depth", p.min_hole_depth);
+  v.field("rim_sectors", p.rim_sectors);
 }
 
 template <class V>
@@ -72,6 +82,7 @@ void visit(V& v, BoardVerifier::Params& p) {
   v.field("min_samples", p.min_samples);
   v.field("min_hole_open", p.min_hole_open);
   v.field("min_outline_open", p.min_outline_open);
+  v.field("min_rim_support", p.min_rim_support);
   v.field("confident_score", p.confident_score);
   v.field("max_hypotheses", p.max_hypotheses);
 }
@@ -110,6 +121,7 @@ void visit(V& v, EdgeFilter::Params& p) {
   v.field("adaptive_quantile", p.adaptive_quantile);
   v.field("adaptive_fraction", p.adaptive_fraction);
   v.field("min_sobel_threshold", p.min_sobel_threshold);
+  v.field("noise_factor", p.noise_factor);
   v.field("region_dilation_px", p.region_dilation_px);
   v.choice("magnitude", p.magnitude, {{M::Hypot, "hypot"}, {M::HalfL1, "half_l1"}});
   v.field("remove_border_lines", p.remove_border_lines);
@@ -212,6 +224,8 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("lidar_pass_through", [&](V& s) { visit(s, p.lidar_pass_through); });
   v.section("lidar_plane", [&](V& s) { visit(s, p.lidar_plane); });
   v.section("discontinuity", [&](V& s) { visit(s, p.discontinuity); });
+  v.section("occupancy", [&](V& s) { visit(s, p.occupancy); });
+  v.field("ring_free_frames", p.ring_free_frames);
   v.section("lidar_circles", [&](V& s) { visit(s, p.lidar_circles); });
   v.section("lidar_verifier", [&](V& s) { visit(s, p.lidar_verifier); });
   v.section("stereo", [&](V& s) { visit(s, p.stereo); });

@@ -18,6 +18,7 @@
 #include <l2s/error.hpp>
 
 #include "camera/cv_image.hpp"
+#include "camera/noise_level.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -28,9 +29,16 @@
 namespace l2s {
 namespace {
 
-/// Sobel magnitude image of a gray crop, scaled to 0..255 as EdgeFilter::Magnitude says.
-cv::Mat sobel_magnitude(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
+/// Sobel responses of a gray crop and their magnitude, scaled to 0..255 as EdgeFilter::Magnitude says.
+struct Sobel {
   cv::Mat gx, gy, magnitude;
+};
+
+Sobel sobel_of(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
+  Sobel out;
+  cv::Mat& gx = out.gx;
+  cv::Mat& gy = out.gy;
+  cv::Mat& magnitude = out.magnitude;
   cv::Sobel(gray, gx, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
   cv::Sobel(gray, gy, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
   if (kind == EdgeFilter::Magnitude::HalfL1) {
@@ -40,11 +48,23 @@ cv::Mat sobel_magnitude(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
     cv::magnitude(gx, gy, magnitude);
     magnitude = cv::min(magnitude, 255.0f);
   }
-  return magnitude;
+  return out;
+}
+
+/// Where pixel (x, y) looks on the plane, or nothing when the ray misses it.
+bool cast_onto(const CameraInfo& camera, const Plane& plane, double x, double y, Eigen::Vector3d& out) {
+  const Eigen::Vector3d ray((x - camera.cx()) / camera.fx(), (y - camera.cy()) / camera.fy(), 1.0);
+  const double denom = plane.normal().dot(ray);
+  if (std::abs(denom) < 1e-9) return false;
+  const double t = -plane.offset() / denom;
+  if (t <= 0.0) return false;
+  out = t * ray;
+  return true;
 }
 
 struct EdgePixels {
-  std::vector<Eigen::Vector3d> points;  // on the plane, camera frame
+  std::vector<Eigen::Vector3d> points;     // on the plane, camera frame
+  std::vector<Eigen::Vector3d> gradients;  // unit, in the plane: where the image gradient points
   std::vector<Eigen::Vector2i> pixels;
   double threshold = 0.0;
 };
@@ -66,28 +86,34 @@ EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const Ster
   const cv::Rect box = cv::boundingRect(mask);
   if (box.area() <= 0) return out;
   const cv::Rect padded = (box + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, gray.cols, gray.rows);
-  const cv::Mat magnitude = sobel_magnitude(gray(padded), params.magnitude);
+  const Sobel sobel = sobel_of(gray(padded), params.magnitude);
+  const cv::Mat& magnitude = sobel.magnitude;
   std::vector<float> values;
   for (int y = box.y; y < box.y + box.height; ++y)
     for (int x = box.x; x < box.x + box.width; ++x)
       if (mask.at<std::uint8_t>(y, x)) values.push_back(magnitude.at<float>(y - padded.y, x - padded.x));
   if (values.empty()) return out;
   out.threshold = params.sobel_threshold;
+  // A Sobel response has 3.5 times the image noise's sigma per axis; four of
+  // those keep noise out of the edges of a low-contrast board.
+  const double noise_floor = params.noise_factor * std::sqrt(12.0) * detail::image_noise_sigma(gray);
   if (params.adaptive_quantile > 0.0) {
     auto q = values.begin() + static_cast<std::ptrdiff_t>(params.adaptive_quantile * (values.size() - 1));
     std::nth_element(values.begin(), q, values.end());
     const double adaptive = params.adaptive_fraction * static_cast<double>(*q);
-    out.threshold = std::min(params.sobel_threshold, std::max(params.min_sobel_threshold, adaptive));
+    out.threshold =
+        std::min(params.sobel_threshold, std::max({params.min_sobel_threshold, noise_floor, adaptive}));
   }
   for (int y = box.y; y < box.y + box.height; ++y)
     for (int x = box.x; x < box.x + box.width; ++x) {
       if (!mask.at<std::uint8_t>(y, x) || magnitude.at<float>(y - padded.y, x - padded.x) < out.threshold) continue;
-      const Eigen::Vector3d ray((x - camera.cx()) / camera.fx(), (y - camera.cy()) / camera.fy(), 1.0);
-      const double denom = plane.normal().dot(ray);
-      if (std::abs(denom) < 1e-9) continue;
-      const double t = -plane.offset() / denom;
-      if (t <= 0.0) continue;
-      out.points.push_back(t * ray);
+      // The gradient's direction on the plane: where a step along it in the image lands.
+      Eigen::Vector2d g(sobel.gx.at<float>(y - padded.y, x - padded.x), sobel.gy.at<float>(y - padded.y, x - padded.x));
+      g.normalize();
+      Eigen::Vector3d p, step;
+      if (!cast_onto(camera, plane, x, y, p) || !cast_onto(camera, plane, x + g.x(), y + g.y(), step)) continue;
+      out.points.push_back(p);
+      out.gradients.push_back((step - p).normalized());
       out.pixels.emplace_back(x, y);
     }
   return out;
@@ -149,6 +175,7 @@ void EdgeFilter::Params::validate() const {
   if (!(min_sobel_threshold >= 0.0 && min_sobel_threshold <= 255.0))
     throw ParamError("min_sobel_threshold", "must be in [0, 255]");
   if (region_dilation_px < 0 || region_dilation_px > 50) throw ParamError("region_dilation_px", "must be 0..50");
+  if (!(noise_factor >= 0.0)) throw ParamError("noise_factor", "must be >= 0");
 }
 
 EdgeFilter::EdgeFilter(Params params) : params_(params) { params_.validate(); }
@@ -240,6 +267,7 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camer
     if (removed[k]) continue;
     result.edges.points.push_back(points[kept[k]]);
     result.edges.pixels.push_back(found.pixels[kept[k]]);
+    result.gradients.push_back(found.gradients[kept[k]]);
   }
   result.found = !result.edges.points.empty();
   if (!result.found)

@@ -38,6 +38,12 @@ PlaneSegmenter::Params StereoBoardLocator::Params::coarse_plane() {
   // The thresholds grow with the coarse pass's depth noise (set per frame).
   PlaneSegmenter::Params plane = PlaneSegmenter::Params::stereo();
   plane.max_samples = 20000;
+  // A plain board leaves parts of itself unmatched, and SGM carries its
+  // disparity some way into a plain background: the coarse patch may be
+  // smaller or larger than the board. The full-resolution pass of its region
+  // (widened to the whole board) and the verification decide.
+  plane.min_length_fraction = 0.5;
+  plane.size_tolerance = 0.5;
   return plane;
 }
 
@@ -89,8 +95,10 @@ StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const I
   }
 
   // Each candidate's region: its pixels' bounding box, widened by the margin
-  // at its nearest depth and by one coarse cell; its depth band likewise.
+  // and by as much of the board as the patch may miss (at its nearest
+  // depth), and by one coarse cell; its depth band likewise.
   const double cell = 1.0 / result.scale;
+  const double board_long = std::max(target.board_width, target.board_height);
   for (const int index : result.plane.ranking) {
     const PlaneCandidate& candidate = result.plane.candidates[index];
     std::vector<double> depths;
@@ -105,7 +113,9 @@ StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const I
     region.candidate = index;
     region.min_depth = std::max(0.05, quantile(depths, 0.01) - params_.depth_margin);
     region.max_depth = quantile(depths, 0.99) + params_.depth_margin;
-    const int margin = static_cast<int>(std::ceil(cameras.left.fx() * params_.region_margin / region.min_depth + cell));
+    const double missing = std::max({0.0, board_long - candidate.extent_long, board_short - candidate.extent_short});
+    const int margin = static_cast<int>(
+        std::ceil(cameras.left.fx() * (params_.region_margin + missing) / region.min_depth + cell));
     region.roi.x = std::max(0, x0 - margin);
     region.roi.y = std::max(0, y0 - margin);
     region.roi.width = std::min(left.width, x1 + margin + 1) - region.roi.x;

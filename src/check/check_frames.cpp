@@ -20,21 +20,33 @@ LidarObservation observe_lidar(const LidarCloud& sweep, const LidarInspection& i
 CameraObservation observe_camera(const Image& left, const CameraInspection& inspection, bool found,
                                  const StereoCamera& cameras, const SceneObserver& observer, bool with_edges) {
   CameraObservation out;
+  // The branch works in the rectified frame (raw images are rectified
+  // first); the check keeps the board in the camera frame of DATASET.md,
+  // where the calibrated transform lives: p_camera = R_rect_camera^T p_rect.
+  Eigen::Isometry3d T_camera_rect = Eigen::Isometry3d::Identity();
+  if (inspection.rectified) T_camera_rect.linear() = inspection.rectified->R_rect_camera.transpose();
   if (found) {
     if (inspection.refined && inspection.refined->converged)
-      out.T_camera_board = inspection.refined->T_camera_board;
+      out.T_camera_board = T_camera_rect * inspection.refined->T_camera_board;
     else if (inspection.T_camera_board_initial)
-      out.T_camera_board = *inspection.T_camera_board_initial;
-    if (inspection.board.size() >= 3) out.stereo_plane = inspection.board_plane;
+      out.T_camera_board = T_camera_rect * *inspection.T_camera_board_initial;
+    if (inspection.board.size() >= 3)
+      out.stereo_plane = Plane(inspection.board_plane).transform(T_camera_rect.linear(), Eigen::Isometry);
   }
   // The whole frame's disparity: the coarse pass when the board was located
-  // first (the full-resolution pass then covers its region only).
+  // first (the full-resolution pass then covers its region only). Disparity
+  // and depth stay in the rectified frame, as the check projects into it.
   if (inspection.located && inspection.located->stereo.found)
     out.depth = observer.observe_depth(inspection.located->stereo.disparity, cameras,
                                        inspection.located->stereo.depth_noise);
   else if (!inspection.located && inspection.stereo && inspection.stereo->found)
     out.depth = observer.observe_depth(inspection.stereo->disparity, cameras, inspection.stereo->depth_noise);
-  if (with_edges) out.edges = observer.observe_edges(left, cameras);
+  // Edges of the rectified left image: the branch's own rectification when
+  // it made one (the same P, so the same pixels, and no second remap).
+  if (with_edges)
+    out.edges = inspection.rectified
+                    ? observer.observe_edges(inspection.rectified->left, inspection.rectified->cameras)
+                    : observer.observe_edges(left, cameras);
   return out;
 }
 
@@ -44,7 +56,10 @@ CheckFrame observe_frame(const LidarCloud& sweep, const Image& left, const Image
   LidarInspection lidar;
   CameraInspection camera;
   const BranchReport lidar_report = detail::run_lidar_branch(sweep, target, params, &lidar);
-  const BranchReport camera_report = detail::run_camera_branch(left, right, cameras, target, params, &camera);
+  // The rectifier's maps are built per call: a caller checking many raw
+  // frames pays that once per frame, which `l2s check` can afford.
+  const detail::CameraSetup setup(cameras);
+  const BranchReport camera_report = detail::run_camera_branch(left, right, setup, target, params, &camera);
   CheckFrame frame;
   frame.id = id;
   frame.lidar = observe_lidar(sweep, lidar, lidar_report.found, observer);

@@ -13,6 +13,7 @@
 #include <l2s/error.hpp>
 
 #include "circles/circle_fit.hpp"
+#include "circles/circle_votes.hpp"
 #include "circles/hole_pattern.hpp"
 #include "plane/plane_fit.hpp"
 
@@ -44,10 +45,13 @@ CircleFinder::CircleFinder() : CircleFinder(Params{}) {}
 CircleFinder::CircleFinder(Params params) : params_(std::move(params)) { params_.validate(); }
 
 CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edges, const Plane& plane_in,
-                                        const Eigen::Vector3d& up, const Target& target) const {
+                                        const Eigen::Vector3d& up, const Target& target,
+                                        const std::vector<Eigen::Vector3d>& gradients) const {
   target.validate();
   if (!up.allFinite() || up.norm() < 1e-9) throw ParamError("up", "must be a finite non-zero vector");
   if (!plane_in.coeffs().allFinite()) throw Error("CircleFinder: the plane is not finite");
+  if (!gradients.empty() && gradients.size() != edges.size())
+    throw ParamError("gradients", "must be empty or one per edge point");
   Result result;
   const Plane plane = detail::facing_origin(plane_in);
   const detail::PlaneAxes axes = detail::plane_axes(plane.normal(), up);
@@ -57,7 +61,8 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
   // Edge points in the plane frame (x right, y up, z towards the sensor).
   std::vector<detail::EdgePoint2> points;
   points.reserve(edges.size());
-  for (const Eigen::Vector3d& q : edges) {
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const Eigen::Vector3d& q = edges[k];
     if (!q.allFinite() || q.norm() < 1e-9) continue;
     const Eigen::Vector3d ray = q.normalized();
     const double ray_normal = ray.dot(plane.normal());  // < 0: the ray goes away from the sensor side
@@ -68,6 +73,10 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
     if (params_.model_thickness && ray_normal < -1e-6) {
       const Eigen::Vector2d ray_inplane(ray.dot(axes.right), ray.dot(axes.up));
       p.shift = -target.board_thickness * ray_inplane / ray_normal;
+    }
+    if (!gradients.empty()) {
+      const Eigen::Vector2d g(gradients[k].dot(axes.right), gradients[k].dot(axes.up));
+      if (g.allFinite() && g.norm() > 1e-9) p.direction = g.normalized();
     }
     points.push_back(p);
   }
@@ -84,7 +93,9 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
   // Two candidates both within tolerance of one hole would make every frame ambiguous.
   search.separation = std::max(0.5 * radius, 2.0 * params_.spacing_tolerance);
   std::mt19937_64 rng(params_.seed);
-  const std::vector<detail::CircleCandidate2> candidates = detail::find_circle_candidates(points, search, rng);
+  const std::vector<detail::CircleCandidate2> candidates =
+      gradients.empty() ? detail::find_circle_candidates(points, search, rng)
+                        : detail::find_circle_candidates_by_votes(points, search);
   std::vector<Eigen::Vector2d> candidate_centers;
   for (const detail::CircleCandidate2& c : candidates) {
     candidate_centers.push_back(c.center);

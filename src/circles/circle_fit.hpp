@@ -20,6 +20,7 @@ namespace l2s::detail {
 struct EdgePoint2 {
   Eigen::Vector2d q;                             // [m] on the plane, (right, up)
   Eigen::Vector2d shift = Eigen::Vector2d::Zero();  // [m] see above
+  Eigen::Vector2d direction = Eigen::Vector2d::Zero();  // unit intensity gradient in the plane, zero if unknown
 };
 
 /// Aperture residual of one point for a hole centred at c.

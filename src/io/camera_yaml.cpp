@@ -10,8 +10,6 @@
 #include "io/stereo_check.hpp"
 #include "io/yaml_helpers.hpp"
 
-#include <cmath>
-#include <sstream>
 
 namespace l2s::io {
 
@@ -63,45 +61,13 @@ void write_camera_info(const std::string& path, const CameraInfo& camera) {
   detail::write_file_atomically(path, yaml::document_text(out));
 }
 
-void check_rectified_pair(const StereoCamera& cameras, const std::string& left_path,
-                          const std::string& right_path) {
-  constexpr double kPixelTolerance = 1e-3;  // [px] files round P to a few decimals
-  const CameraInfo& l = cameras.left;
-  const CameraInfo& r = cameras.right;
-  const auto size = [](const CameraInfo& c) {
-    return std::to_string(c.width) + "x" + std::to_string(c.height);
-  };
-  if (l.width != r.width || l.height != r.height)
-    throw FileError(right_path, "image size " + size(r) + " differs from " + left_path + " (" +
-                                    size(l) + "); a rectified pair shares its size");
-  const auto require_same = [&](double left_value, double right_value, const char* name) {
-    if (std::abs(left_value - right_value) > kPixelTolerance) {
-      std::ostringstream message;
-      message.precision(10);
-      message << "projection_matrix " << name << " = " << right_value << " differs from "
-              << left_path << " (" << left_value << "); the pair is not rectified";
-      throw FileError(right_path, message.str());
-    }
-  };
-  require_same(l.fx(), r.fx(), "fx");
-  require_same(l.fy(), r.fy(), "fy");
-  require_same(l.cy(), r.cy(), "cy");
-  // The left camera is the reference: its P has no baseline term (|Tx| < 1 mm).
-  if (std::abs(l.projection_matrix(0, 3)) > 1e-3 * l.fx())
-    throw FileError(left_path, "projection_matrix P[0][3] must be 0 for the left camera");
-  if (!(cameras.baseline() > 0.0)) {
-    std::ostringstream message;
-    message << "baseline -P[0][3]/fx = " << cameras.baseline()
-            << " m must be positive (is this the left camera?)";
-    throw FileError(right_path, message.str());
-  }
-}
-
-StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path) {
+StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path,
+                                ImageKind images) {
   StereoCamera cameras;
   cameras.left = read_camera_info(left_path);
   cameras.right = read_camera_info(right_path);
-  check_rectified_pair(cameras, left_path, right_path);
+  cameras.images = images;
+  check_pair(cameras, left_path, right_path);
   return cameras;
 }
 

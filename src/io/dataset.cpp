@@ -3,10 +3,13 @@
 
 #include <l2s/error.hpp>
 #include <l2s/io/camera_yaml.hpp>
+#include <l2s/io/dataset_yaml.hpp>
 #include <l2s/io/image_io.hpp>
 #include <l2s/io/ring_recovery.hpp>
 #include <l2s/io/target_yaml.hpp>
 #include <l2s/io/transform_yaml.hpp>
+
+#include "io/stereo_check.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -77,7 +80,12 @@ Dataset Dataset::open(const std::string& folder) {
   if (!fs::is_directory(folder, error)) throw FileError(folder, "no such dataset folder");
   Dataset dataset;
   dataset.folder_ = folder;
-  dataset.cameras_ = read_stereo_camera(join(folder, "left.yaml"), join(folder, "right.yaml"));
+  const std::string info_path = join(folder, "dataset.yaml");
+  dataset.has_dataset_file_ = fs::exists(info_path, error);
+  const DatasetInfo info = read_dataset_info_or_default(info_path);
+  const std::string left_yaml = join(folder, "left.yaml"), right_yaml = join(folder, "right.yaml");
+  dataset.cameras_ = read_stereo_camera(left_yaml, right_yaml, info.images);
+  dataset.warnings_ = rectified_pair_warnings(dataset.cameras_, left_yaml, right_yaml);
   const std::string target_path = join(folder, "target.yaml");
   dataset.has_target_file_ = fs::exists(target_path, error);
   dataset.target_ = read_target_or_default(target_path);
@@ -99,15 +107,19 @@ Frame Dataset::load(std::size_t index) const {
                                   std::to_string(stems_.size()) + " frames in " + folder_);
   Frame frame;
   frame.stem = stems_[index];
-  frame.lidar = read_pcd(lidar_path(frame.stem));
+  PcdFile sweep = read_pcd_file(lidar_path(frame.stem));
+  frame.lidar = std::move(sweep.cloud);
   frame.left = read_image(left_path(frame.stem));
   frame.right = read_image(right_path(frame.stem));
   // Both YAMLs share one size (read_stereo_camera), so left and right match too.
   check_size(frame.left, cameras_.left, left_path(frame.stem), "left.yaml");
   check_size(frame.right, cameras_.right, right_path(frame.stem), "right.yaml");
   if (!frame.lidar.has_ring()) {
-    recover_rings(frame.lidar);
-    frame.rings_recovered = true;
+    frame.ring_recovery = sweep.height > 1 ? rings_from_rows(frame.lidar, sweep.height)
+                                           : recover_ring_structure(frame.lidar);
+    frame.ring_source = frame.ring_recovery->source;
+    // A ring-free scan has no rings to give: the calibrator accumulates it instead.
+    if (frame.ring_recovery->structure == ScanStructure::RingFree) frame.lidar.ring.clear();
   }
   return frame;
 }

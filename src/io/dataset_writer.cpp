@@ -3,6 +3,7 @@
 
 #include <l2s/error.hpp>
 #include <l2s/io/camera_yaml.hpp>
+#include <l2s/io/dataset_yaml.hpp>
 #include <l2s/io/image_io.hpp>
 #include <l2s/io/target_yaml.hpp>
 #include <l2s/io/transform_yaml.hpp>
@@ -33,12 +34,20 @@ DatasetWriter::DatasetWriter(const std::string& folder, const StereoCamera& came
                              const Target& target)
     : folder_(folder), cameras_(cameras) {
   // Refuse what the reader would reject, before any file exists.
-  check_rectified_pair(cameras, join(folder, "left.yaml"), join(folder, "right.yaml"));
+  check_pair(cameras, join(folder, "left.yaml"), join(folder, "right.yaml"));
   target.validate();
   for (const char* sub : {"lidar", "left", "right"}) {
     std::error_code error;
     fs::create_directories(join(folder, sub), error);
     if (error) throw FileError(join(folder, sub), "cannot create folder: " + error.message());
+  }
+  // Rectified is the default: such folders need no dataset.yaml (and must not
+  // keep one from an earlier raw dataset written into the same folder).
+  if (cameras.images == ImageKind::Raw) {
+    write_dataset_info(join(folder, "dataset.yaml"), {cameras.images});
+  } else {
+    std::error_code error;
+    fs::remove(join(folder, "dataset.yaml"), error);
   }
   write_camera_info(join(folder, "left.yaml"), cameras.left);
   write_camera_info(join(folder, "right.yaml"), cameras.right);

@@ -244,7 +244,9 @@ LidarCloud decode_ascii(const Header& header, const Wanted& wanted, const std::s
 
 }  // namespace
 
-LidarCloud read_pcd(const std::string& path) {
+LidarCloud read_pcd(const std::string& path) { return read_pcd_file(path).cloud; }
+
+PcdFile read_pcd_file(const std::string& path) {
   const std::string bytes = read_whole_file(path);
   const Header header = pcd::parse_header(bytes, path);
   const Wanted wanted(header);
@@ -255,14 +257,21 @@ LidarCloud read_pcd(const std::string& path) {
 
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data()) + header.data_offset;
   const std::size_t available = bytes.size() - header.data_offset;
+  PcdFile file;
+  file.width = static_cast<std::size_t>(header.width);
+  file.height = static_cast<std::size_t>(header.height);
   switch (header.encoding) {
     case pcd::Encoding::Ascii:
-      return decode_ascii(header, wanted, bytes, path);
+      file.cloud = decode_ascii(header, wanted, bytes, path);
+      break;
     case pcd::Encoding::Binary:
-      return decode_binary(header, wanted, data, available, path);
+      file.cloud = decode_binary(header, wanted, data, available, path);
+      break;
     default:
-      return decode_compressed(header, wanted, data, available, path);
+      file.cloud = decode_compressed(header, wanted, data, available, path);
+      break;
   }
+  return file;
 }
 
 }  // namespace l2s::io

@@ -1,5 +1,6 @@
 // PCD v0.7 writer: x y z (F4), then intensity (F4) and ring (U2) when the cloud
-// has them, as one unorganized row (WIDTH = N, HEIGHT = 1). binary_compressed
+// has them, as one unorganized row (WIDTH = N, HEIGHT = 1) or as HEIGHT rows of
+// WIDTH = N / HEIGHT points (organised, e.g. one row per laser). binary_compressed
 // follows PCL's layout: the fields as separate arrays, LZF-compressed, behind
 // two uint32 sizes (compressed, uncompressed).
 #include <l2s/io/pcd.hpp>
@@ -29,7 +30,7 @@ const char* encoding_name(PcdEncoding encoding) {
   }
 }
 
-std::string header(const LidarCloud& cloud, PcdEncoding encoding) {
+std::string header(const LidarCloud& cloud, PcdEncoding encoding, std::size_t height) {
   const bool i = cloud.has_intensity(), r = cloud.has_ring();
   std::ostringstream out;
   out << "# .PCD v0.7 - Point Cloud Data file format\n"
@@ -38,8 +39,8 @@ std::string header(const LidarCloud& cloud, PcdEncoding encoding) {
       << "SIZE 4 4 4" << (i ? " 4" : "") << (r ? " 2" : "") << "\n"
       << "TYPE F F F" << (i ? " F" : "") << (r ? " U" : "") << "\n"
       << "COUNT 1 1 1" << (i ? " 1" : "") << (r ? " 1" : "") << "\n"
-      << "WIDTH " << cloud.size() << "\n"
-      << "HEIGHT 1\n"
+      << "WIDTH " << cloud.size() / height << "\n"
+      << "HEIGHT " << height << "\n"
       << "VIEWPOINT 0 0 0 1 0 0 0\n"
       << "POINTS " << cloud.size() << "\n"
       << "DATA " << encoding_name(encoding) << "\n";
@@ -110,7 +111,11 @@ std::string compressed_data(const LidarCloud& cloud, const std::string& path) {
 
 }  // namespace
 
-void write_pcd(const std::string& path, const LidarCloud& cloud, PcdEncoding encoding) {
+void write_pcd(const std::string& path, const LidarCloud& cloud, PcdEncoding encoding,
+               std::size_t height) {
+  if (height == 0 || cloud.size() % height != 0)
+    throw ParamError("height", std::to_string(height) + " rows cannot hold " +
+                                   std::to_string(cloud.size()) + " points (" + path + ")");
   if (cloud.has_intensity() && cloud.intensity.size() != cloud.size())
     throw ParamError("cloud.intensity", std::to_string(cloud.intensity.size()) + " values for " +
                                             std::to_string(cloud.size()) + " points (" + path +
@@ -118,7 +123,7 @@ void write_pcd(const std::string& path, const LidarCloud& cloud, PcdEncoding enc
   if (cloud.has_ring() && cloud.ring.size() != cloud.size())
     throw ParamError("cloud.ring", std::to_string(cloud.ring.size()) + " values for " +
                                        std::to_string(cloud.size()) + " points (" + path + ")");
-  std::string content = header(cloud, encoding);
+  std::string content = header(cloud, encoding, height);
   switch (encoding) {
     case PcdEncoding::Ascii:
       content += ascii_data(cloud);

@@ -1,70 +1,28 @@
-// Ring recovery from elevation angles: sort the elevations, split them where
-// consecutive values are further apart than min_gap, fold stray points into the
-// nearest ring, then number the rings from the lowest. Beams without returns
-// are recognised where the spacing is regular: a gap of ~k local spacings
-// between two rings skips k - 1 indices. The local spacing is the median of up
-// to four gaps on each side; it is trusted only when no gap there is much
-// smaller than it (uniform sensors, and HDL-64E's two blocks), so sensors with
-// a deliberately uneven fan (VLP-32C) are numbered consecutively instead.
+// Ring recovery by per-laser models (see l2s/io/ring_recovery.hpp and
+// laser_fan.hpp): fit the fan, give every return its laser, number the lasers
+// from the lowest, and judge the result. Beams without returns are recognised
+// where the spacing is regular: a gap of ~k local spacings between two lasers
+// skips k - 1 indices. The local spacing is the median of up to four gaps on
+// each side; it is trusted only when no gap there is much smaller than it
+// (uniform sensors, and HDL-64E's two blocks), so sensors with a deliberately
+// uneven fan (VLP-32C) are numbered consecutively instead.
 #include <l2s/io/ring_recovery.hpp>
 
 #include <l2s/error.hpp>
 
+#include "io/laser_fan.hpp"
+#include "io/ring_model_input.hpp"
+#include "io/ring_report.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
-#include <vector>
 
 namespace l2s::io {
 namespace {
 
 constexpr int kWindow = 4;               // gaps looked at on each side
 constexpr double kRegularSpacing = 0.6;  // smallest gap / median at least this = regular
-constexpr double kMinRange = 1e-6;       // [m] points closer than this are "no return"
-
-struct Cluster {
-  std::size_t begin, end;  // range in the sorted elevations
-  std::size_t size() const { return end - begin; }
-};
-
-std::vector<Cluster> split(const std::vector<std::pair<double, std::size_t>>& sorted,
-                           double min_gap) {
-  std::vector<Cluster> clusters;
-  for (std::size_t i = 0; i < sorted.size(); ++i)
-    if (i == 0 || sorted[i].first - sorted[i - 1].first > min_gap)
-      clusters.push_back({i, i + 1});
-    else
-      clusters.back().end = i + 1;
-  return clusters;
-}
-
-// One sweep from the lowest: a small cluster joins the neighbour it is closer to.
-std::vector<Cluster> merge_small(const std::vector<Cluster>& clusters,
-                                 const std::vector<std::pair<double, std::size_t>>& sorted,
-                                 std::size_t min_points) {
-  std::vector<Cluster> merged;
-  for (std::size_t k = 0; k < clusters.size(); ++k) {
-    Cluster c = clusters[k];
-    if (!merged.empty() && merged.back().size() < min_points) {  // the last one was small
-      merged.back().end = c.end;
-      continue;
-    }
-    if (c.size() < min_points && !merged.empty()) {
-      const double gap_below = sorted[c.begin].first - sorted[merged.back().end - 1].first;
-      const bool has_above = k + 1 < clusters.size();
-      const double gap_above = has_above
-                                   ? sorted[clusters[k + 1].begin].first - sorted[c.end - 1].first
-                                   : std::numeric_limits<double>::infinity();
-      if (gap_below <= gap_above) {
-        merged.back().end = c.end;
-        continue;
-      }
-    }
-    merged.push_back(c);  // a small one here is joined by the next cluster
-  }
-  return merged;
-}
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -72,11 +30,13 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// Index of each cluster, skipping indices of beams that returned nothing.
-std::vector<int> number(const std::vector<double>& centers, bool infer_missing) {
-  std::vector<int> index(centers.size(), 0);
+// Index of each laser (ascending elevations), skipping indices of beams that
+// returned nothing.
+std::vector<int> number(const std::vector<double>& elevations, bool infer_missing) {
+  std::vector<int> index(elevations.size(), 0);
   std::vector<double> gaps;
-  for (std::size_t k = 1; k < centers.size(); ++k) gaps.push_back(centers[k] - centers[k - 1]);
+  for (std::size_t k = 1; k < elevations.size(); ++k)
+    gaps.push_back(elevations[k] - elevations[k - 1]);
   for (std::size_t j = 0; j < gaps.size(); ++j) {
     int steps = 1;
     std::vector<double> window;
@@ -93,36 +53,92 @@ std::vector<int> number(const std::vector<double>& centers, bool infer_missing) 
   return index;
 }
 
+fan::FanParams fan_params(const RingRecoveryParams& params) {
+  fan::FanParams fan;
+  fan.min_gap = params.min_gap;
+  fan.min_points = static_cast<std::size_t>(params.min_points_per_ring);
+  fan.max_points = static_cast<std::size_t>(params.max_fit_points);
+  fan.profile.offset_range = params.max_offset;
+  return fan;
+}
+
+// Lines with fewer returns than a ring needs give theirs to the nearest other
+// line (stray returns fold into a ring, as a ring of two returns is no ring).
+void drop_thin_lines(const std::vector<fan::Point>& points, std::vector<fan::Line>& lines,
+                     std::vector<int>& labels, std::size_t min_points) {
+  std::vector<std::size_t> count(lines.size(), 0);
+  for (int k : labels)
+    if (k >= 0) ++count[k];
+  std::vector<int> renumber(lines.size(), -1);
+  std::vector<fan::Line> kept;
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    if (count[k] >= min_points) {
+      renumber[k] = static_cast<int>(kept.size());
+      kept.push_back(lines[k]);
+    }
+  if (kept.size() == lines.size() || kept.empty()) return;
+  const fan::LineIndex index(kept);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    labels[i] = labels[i] < 0              ? -1
+                : renumber[labels[i]] >= 0 ? renumber[labels[i]]
+                                           : index.nearest(points[i]).line;
+  lines = std::move(kept);
+}
+
+// All returns as one laser, for sweeps with fewer returns than a laser needs.
+fan::Line one_line(const std::vector<fan::Point>& points) {
+  constexpr double kNoise = 0.0004;  // [v] any positive value: one line takes every return
+  fan::LineSums sums;
+  for (const fan::Point& p : points) sums.add(p);
+  return fan::fit_line(sums, 0.0, 0.01, kNoise, kNoise);
+}
+
 }  // namespace
 
 void RingRecoveryParams::validate() const {
   if (!(min_gap > 0.0) || !std::isfinite(min_gap))
     throw ParamError("min_gap", "must be a positive angle in radians");
   if (min_points_per_ring < 1) throw ParamError("min_points_per_ring", "must be at least 1");
+  if (!(max_offset > 0.0) || !std::isfinite(max_offset))
+    throw ParamError("max_offset", "must be a positive distance in metres");
+  if (max_fit_points < 100) throw ParamError("max_fit_points", "must be at least 100");
+}
+
+RingRecoveryReport recover_ring_structure(LidarCloud& cloud, const RingRecoveryParams& params) {
+  params.validate();
+  cloud.ring.assign(cloud.size(), 0);
+  const ModelInput input = model_input(cloud);
+  RingRecoveryReport report;
+  report.source = RingSource::LaserModel;
+  if (!input.points.empty()) {
+    const fan::FanParams fan_settings = fan_params(params);
+    fan::Fan fan = fan::fit_fan(input.points, fan_settings);
+    if (fan.lines.empty()) fan.lines = {one_line(input.points)};  // too few returns for lasers
+    std::vector<int> labels = fan::assign_all(input.points, fan, fan_settings);
+    drop_thin_lines(input.points, fan.lines, labels, fan_settings.min_points);
+    std::vector<double> elevations;
+    for (const fan::Line& line : fan.lines) elevations.push_back(line.elevation());
+    const std::vector<int> ring_of_line = number(elevations, params.infer_missing_beams);
+    for (std::size_t i = 0; i < input.points.size(); ++i)
+      if (labels[i] >= 0)
+        cloud.ring[input.index[i]] = static_cast<std::uint16_t>(ring_of_line[labels[i]]);
+    describe_lines(fan.lines, ring_of_line, input.points, labels, report);
+    report.rings = ring_of_line.empty() ? 0 : ring_of_line.back() + 1;
+  }
+  finish_report(report);
+  return report;
 }
 
 int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params) {
-  params.validate();
-  std::vector<std::pair<double, std::size_t>> sorted;  // (elevation, point index)
-  sorted.reserve(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3d& p = cloud.points[i];
-    if (!p.allFinite() || p.norm() < kMinRange) continue;
-    sorted.emplace_back(std::atan2(p.z(), std::hypot(p.x(), p.y())), i);
-  }
-  std::sort(sorted.begin(), sorted.end());
-  cloud.ring.assign(cloud.size(), 0);
-  if (sorted.empty()) return 0;
+  return recover_ring_structure(cloud, params).rings;
+}
 
-  const auto clusters = merge_small(split(sorted, params.min_gap), sorted,
-                                    static_cast<std::size_t>(params.min_points_per_ring));
-  std::vector<double> centers;  // medians: robust to the stray points folded in
-  for (const Cluster& c : clusters) centers.push_back(sorted[c.begin + c.size() / 2].first);
-  const std::vector<int> index = number(centers, params.infer_missing_beams);
-  for (std::size_t k = 0; k < clusters.size(); ++k)
-    for (std::size_t s = clusters[k].begin; s < clusters[k].end; ++s)
-      cloud.ring[sorted[s].second] = static_cast<std::uint16_t>(index[k]);
-  return index.back() + 1;
+ScanClassification classify_scan(const LidarCloud& cloud, const RingRecoveryParams& params) {
+  if (cloud.has_ring()) return {ScanStructure::Rings, "the sweep has a ring field"};
+  LidarCloud copy;
+  copy.points = cloud.points;
+  const RingRecoveryReport report = recover_ring_structure(copy, params);
+  return {report.structure, report.structure_reason};
 }
 
 }  // namespace l2s::io

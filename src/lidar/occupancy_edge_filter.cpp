@@ -1,11 +1,13 @@
 // Hole rims from the board's occupancy in its plane (see the header).
 //  1. Board points in plane coordinates; their mean spacing from their
 //     density over the board's solid area sets the grid cell.
-//  2. Empty cells are grouped (4-connected); groups touching the grid's
-//     border are the outside, the others are enclosed by board: a hole when
-//     hole-sized, a gap in the scan's coverage when smaller.
+//  2. One-cell gaps in the coverage are filled (occupied on both sides). A
+//     hole's centre is a place about a radius from the nearest board point
+//     (distance transform of the empty cells) with board all around; gaps in
+//     a non-repetitive scan's coverage are narrow, the outside is open.
 //  3. Around each hole (centre: its cells' centroid), the innermost board
-//     point in each direction is a rim point. Strays inside a hole sit
+//     point in each direction (sectors two point spacings wide at the rim)
+//     is a rim point, moved half a spacing inwards. Strays inside a hole sit
 //     farther in and are ignored when nearer than half a radius; the circle
 //     finder's fit (free apparent radius) does the rest.
 #include <l2s/occupancy_edge_filter.hpp>
@@ -18,6 +20,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+
+#include <opencv2/imgproc.hpp>
 
 namespace l2s {
 namespace {
@@ -33,6 +37,22 @@ class OccupancyGrid {
     height_ = static_cast<int>(std::ceil(box.sizes().y() / cell)) + 3;
     count_.assign(static_cast<std::size_t>(width_) * height_, 0);
     for (const auto& q : uv) ++count_[index(cell_of(q))];
+  }
+
+  /// Fills empty cells that have occupied cells on both sides (along a row,
+  /// a column or a diagonal): a non-repetitive scan leaves such one-cell
+  /// gaps in its coverage, a hole is many cells across.
+  void close_gaps() {
+    std::vector<int> filled = count_;
+    for (int y = 1; y + 1 < height_; ++y)
+      for (int x = 1; x + 1 < width_; ++x) {
+        if (!empty(x, y)) continue;
+        const bool across = (!empty(x - 1, y) && !empty(x + 1, y)) || (!empty(x, y - 1) && !empty(x, y + 1)) ||
+                            (!empty(x - 1, y - 1) && !empty(x + 1, y + 1)) ||
+                            (!empty(x - 1, y + 1) && !empty(x + 1, y - 1));
+        if (across) filled[static_cast<std::size_t>(y) * width_ + x] = 1;
+      }
+    count_.swap(filled);
   }
 
   Eigen::Vector2i cell_of(const Eigen::Vector2d& q) const {
@@ -52,41 +72,57 @@ class OccupancyGrid {
   std::vector<int> count_;
 };
 
-/// Enclosed groups of empty cells (4-connected), each as the centres of its cells.
-std::vector<std::vector<Eigen::Vector2d>> enclosed_empty_regions(const OccupancyGrid& grid) {
+/// Hole centres: places of the grid that are far from every board point
+/// (local maxima of the distance to the nearest occupied cell, about a
+/// radius) and surrounded by board in every direction. Gaps in a scan's
+/// coverage are narrow, so they stay near board; the outside is not
+/// surrounded.
+std::vector<Eigen::Vector2d> hole_centres(const OccupancyGrid& grid, double radius, double min_depth) {
   const int w = grid.width(), h = grid.height();
-  std::vector<int> label(static_cast<std::size_t>(w) * h, -1);
-  std::vector<std::vector<Eigen::Vector2d>> regions;
-  std::vector<Eigen::Vector2i> stack;
-  for (int y0 = 0; y0 < h; ++y0)
-    for (int x0 = 0; x0 < w; ++x0) {
-      if (!grid.empty(x0, y0) || label[static_cast<std::size_t>(y0) * w + x0] >= 0) continue;
-      bool touches_border = false;
-      std::vector<Eigen::Vector2d> cells;
-      stack.assign(1, {x0, y0});
-      label[static_cast<std::size_t>(y0) * w + x0] = 1;
-      while (!stack.empty()) {
-        const Eigen::Vector2i c = stack.back();
-        stack.pop_back();
-        cells.push_back(grid.centre_of(c.x(), c.y()));
-        touches_border |= c.x() == 0 || c.y() == 0 || c.x() == w - 1 || c.y() == h - 1;
-        for (const Eigen::Vector2i d : {Eigen::Vector2i(1, 0), Eigen::Vector2i(-1, 0), Eigen::Vector2i(0, 1),
-                                        Eigen::Vector2i(0, -1)}) {
-          const Eigen::Vector2i n = c + d;
-          if (n.x() < 0 || n.y() < 0 || n.x() >= w || n.y() >= h) continue;
-          int& l = label[static_cast<std::size_t>(n.y()) * w + n.x()];
-          if (l >= 0 || !grid.empty(n.x(), n.y())) continue;
-          l = 1;
-          stack.push_back(n);
-        }
+  cv::Mat empty(h, w, CV_8UC1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) empty.at<std::uint8_t>(y, x) = grid.empty(x, y) ? 255 : 0;
+  cv::Mat distance;
+  cv::distanceTransform(empty, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const double cell = grid.cell();
+  const auto surrounded = [&](int x, int y) {
+    const int reach = static_cast<int>(std::ceil(1.6 * radius / cell));
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * M_PI / 4.0;
+      bool hit = false;
+      for (int step = 1; step <= reach && !hit; ++step) {
+        const int xx = x + static_cast<int>(std::lround(step * std::cos(a)));
+        const int yy = y + static_cast<int>(std::lround(step * std::sin(a)));
+        if (xx < 0 || yy < 0 || xx >= w || yy >= h) return false;
+        hit = !grid.empty(xx, yy);
       }
-      if (!touches_border) regions.push_back(std::move(cells));
+      if (!hit) return false;
     }
-  return regions;
+    return true;
+  };
+  std::vector<std::pair<float, Eigen::Vector2i>> peaks;
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      const float d = distance.at<float>(y, x);
+      if (d * cell < min_depth * radius || d * cell > 1.5 * radius) continue;
+      bool peak = true;
+      for (int dy = -1; dy <= 1 && peak; ++dy)
+        for (int dx = -1; dx <= 1 && peak; ++dx) peak = distance.at<float>(y + dy, x + dx) <= d;
+      if (peak && surrounded(x, y)) peaks.emplace_back(d, Eigen::Vector2i(x, y));
+    }
+  std::stable_sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<Eigen::Vector2d> centres;
+  for (const auto& [d, c] : peaks) {
+    const Eigen::Vector2d q = grid.centre_of(c.x(), c.y());
+    if (std::none_of(centres.begin(), centres.end(), [&](const auto& k) { return (k - q).norm() < radius; }))
+      centres.push_back(q);
+  }
+  return centres;
 }
 
 /// The innermost board point per direction around `centre`, between half and
-/// one and a half radii out.
+/// one and a half radii out. A sector as wide as two point spacings at the
+/// rim holds its nearest point about half a spacing beyond the rim.
 std::vector<std::size_t> rim_points(const std::vector<Eigen::Vector2d>& uv, const Eigen::Vector2d& centre,
                                     double radius, int sectors) {
   std::vector<std::size_t> best(static_cast<std::size_t>(sectors), std::numeric_limits<std::size_t>::max());
@@ -111,8 +147,7 @@ void OccupancyEdgeFilter::Params::validate() const {
   if (!(cell_factor > 0.0)) throw ParamError("cell_factor", "must be > 0");
   if (!(min_cell > 0.0)) throw ParamError("min_cell", "must be > 0 m");
   if (!(max_cell >= min_cell)) throw ParamError("max_cell", "must be >= min_cell");
-  if (!(min_hole_area > 0.0)) throw ParamError("min_hole_area", "must be > 0");
-  if (!(max_hole_area > min_hole_area)) throw ParamError("max_hole_area", "must be > min_hole_area");
+  if (!(min_hole_depth > 0.0 && min_hole_depth < 1.5)) throw ParamError("min_hole_depth", "must be in (0, 1.5)");
   if (rim_sectors < 8) throw ParamError("rim_sectors", "must be >= 8");
 }
 
@@ -145,24 +180,22 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
 
   const double spacing = std::sqrt(solid_area / static_cast<double>(board.size()));
   result.cell = std::clamp(params_.cell_factor * spacing, params_.min_cell, params_.max_cell);
-  const OccupancyGrid grid(uv, result.cell);
-  const auto regions = enclosed_empty_regions(grid);
-  result.enclosed_regions = static_cast<int>(regions.size());
-  const double cell_area = result.cell * result.cell;
-  for (const auto& cells : regions) {
-    const double area = static_cast<double>(cells.size()) * cell_area;
-    if (area < params_.min_hole_area * hole_area || area > params_.max_hole_area * hole_area) continue;
+  OccupancyGrid grid(uv, result.cell);
+  grid.close_gaps();
+  for (const Eigen::Vector2d& centre : hole_centres(grid, target.hole_radius, params_.min_hole_depth)) {
     ++result.holes;
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (const auto& c : cells) centre += c / static_cast<double>(cells.size());
-    for (const std::size_t k : rim_points(uv, centre, target.hole_radius, params_.rim_sectors))
-      result.edges.push_back(points[board[k]]);
+    // Each rim point is moved half a spacing in, onto the rim it stands for.
+    const int sectors = std::clamp(static_cast<int>(M_PI * target.hole_radius / spacing), 8, params_.rim_sectors);
+    for (const std::size_t k : rim_points(uv, centre, target.hole_radius, sectors)) {
+      const Eigen::Vector2d inward = (centre - uv[k]).normalized() * 0.5 * spacing;
+      result.edges.push_back(frame.to_sensor(uv[k] + inward) + frame.height(points[board[k]]) * frame.normal);
+    }
   }
   result.found = !result.edges.empty();
   if (!result.found) {
     std::ostringstream reason;
     reason << "no hole in the board's occupancy: " << result.board_points << " board points, cell "
-           << result.cell * 1e3 << " mm, " << result.enclosed_regions << " enclosed empty region(s), none hole-sized";
+           << result.cell * 1e3 << " mm, no place a hole's depth away from board points and surrounded by them";
     result.reason = reason.str();
   }
   return result;

@@ -50,7 +50,7 @@ std::string board_mismatch(const detail::Patch& patch, std::size_t patch_points,
   if (patch_points < params.min_support) return "patch has too few points (" + std::to_string(patch_points) + ")";
   if (patch.extent_long > board_long * (1.0 + tol)) return "larger than the board (" + seen + ")";
   if (patch.extent_short > board_short * (1.0 + tol)) return "larger than the board (" + seen + ")";
-  if (patch.extent_long < board_long * (1.0 - tol)) return "smaller than the board (" + seen + ")";
+  if (patch.extent_long < board_long * params.min_length_fraction) return "smaller than the board (" + seen + ")";
   // Lidar rings sample the height only at ring elevations: a loose lower bound.
   if (patch.extent_short < board_short * params.min_height_fraction)
     return "too thin for the board (" + seen + ")";
@@ -280,6 +280,8 @@ void PlaneSegmenter::Params::validate() const {
   if (!(size_tolerance >= 0.0 && size_tolerance < 1.0)) throw ParamError("size_tolerance", "must be in [0, 1)");
   if (!(min_height_fraction >= 0.0 && min_height_fraction <= 1.0))
     throw ParamError("min_height_fraction", "must be in [0, 1]");
+  if (!(min_length_fraction >= 0.0 && min_length_fraction <= 1.0))
+    throw ParamError("min_length_fraction", "must be in [0, 1]");
   positive(isolation_band, "isolation_band");
   if (!(depth_noise >= 0.0) || !std::isfinite(depth_noise)) throw ParamError("depth_noise", "must be >= 0 (1/m)");
 }

@@ -140,7 +140,10 @@ LidarModel LidarModel::mid360() {
   r.lasers = 4;
   r.prism_rate_a = 2.0 * kPi * 183.7;
   r.prism_rate_b = 2.0 * kPi * 116.3;
-  r.rotation_rate = 2.0 * kPi * 10.0;  // one turn per frame
+  // Not one turn per frame: the head turns by a golden-ratio share of a petal
+  // more each turn, so successive turns interleave their sweeps evenly and
+  // the coverage fills in over a second or two, as a non-repetitive scan does.
+  r.rotation_rate = 2.0 * kPi * (183.7 + 116.3) / (29.0 + 0.6180339887);
   m.min_range = 0.1;
   m.max_range = 40.0;
   m.range_sigma0 = 0.02;

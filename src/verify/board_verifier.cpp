@@ -28,6 +28,7 @@ void BoardVerifier::Params::validate() const {
   if (!(min_outline_open >= 0.0 && min_outline_open <= 1.0))
     throw ParamError("min_outline_open", "must be in [0, 1]");
   if (!(confident_score >= 0.0 && confident_score <= 1.0)) throw ParamError("confident_score", "must be in [0, 1]");
+  if (!(min_rim_support >= 0.0 && min_rim_support <= 1.0)) throw ParamError("min_rim_support", "must be in [0, 1]");
   if (max_hypotheses < 1) throw ParamError("max_hypotheses", "must be >= 1");
 }
 
@@ -42,7 +43,10 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
   int holes_seen = 0;
   for (int h = 0; h < 4; ++h) {
     const int samples = e.hole_open[h] + e.hole_blocked[h];
-    if (samples < params_.min_samples) continue;
+    if (samples < params_.min_samples) {
+      open_sum += kNoEvidence;
+      continue;
+    }
     const double open = share(e.hole_open[h], e.hole_blocked[h]);
     if (open < params_.min_hole_open) {
       std::ostringstream reason;
@@ -66,14 +70,24 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
       return verdict;
     }
   }
-  const double holes = holes_seen > 0 ? open_sum / holes_seen : kNoEvidence;
+  if (std::isfinite(e.rim_support) && e.rim_support < params_.min_rim_support) {
+    std::ostringstream reason;
+    reason << "the rims are not where the fit puts them: " << static_cast<int>(std::lround(100.0 * e.rim_support))
+           << "% of the predicted rim samples are confirmed (needs " << params_.min_rim_support * 100.0 << "%)";
+    verdict.reason = reason.str();
+    return verdict;
+  }
+  const double holes = open_sum / 4.0;
   const double fit = 1.0 / (1.0 + std::pow(e.fit_rms / e.fit_scale, 2));
+  const double rims = std::isfinite(e.rim_support) ? e.rim_support : 1.0;
   verdict.verified = true;
-  verdict.score = holes * outline * fit;
+  verdict.score = holes * outline * fit * rims;
   summary.precision(2);
   summary << std::fixed << "holes open " << holes << " (" << holes_seen << " of 4 with evidence), outline clear "
           << outline << (outline_samples >= params_.min_samples ? "" : " (no evidence)") << ", rim fit rms "
-          << e.fit_rms * 1e3 << " mm: score " << verdict.score;
+          << e.fit_rms * 1e3 << " mm";
+  if (std::isfinite(e.rim_support)) summary << ", rims confirmed " << e.rim_support;
+  summary << ": score " << verdict.score;
   verdict.reason = summary.str();
   return verdict;
 }

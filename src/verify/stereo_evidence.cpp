@@ -1,5 +1,7 @@
 #include "verify/stereo_evidence.hpp"
 
+#include "camera/noise_level.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -47,42 +49,33 @@ double patch_sigma(const cv::Mat& image, const Eigen::Vector2d& c, int k) {
 }
 
 /// What the views say at one place of the plane: +1 consistent, -1 not, 0 no
-/// evidence. A patch tells disparities apart only when it has contrast well
-/// above the image noise and stops matching itself once shifted by a couple
-/// of pixels: a smooth ramp or a horizontal line correlates with itself at
-/// any horizontal shift, and would "match" at every disparity.
+/// evidence. The left patch is matched against the right image along the
+/// row, over the disparities around the plane's: the place lies on the plane
+/// when the plane's disparity matches clearly best, and off it when another
+/// disparity matches clearly better. A patch without contrast well above the
+/// noise, a smooth ramp or a horizontal line (matches at any shift), or a
+/// periodic texture (matches at several) gives no clear winner: no evidence.
 int photo_vote(const cv::Mat& left, const cv::Mat& right, const Eigen::Vector2d& l, const Eigen::Vector2d& r,
                double min_sigma, const StereoEvidenceParams& p) {
-  const int k = p.patch_radius, s = p.discriminating_shift_px;
-  const auto inside = [&](const Eigen::Vector2d& q) {
-    return q.allFinite() && q.x() >= k + s + 1 && q.y() >= k + 1 && q.x() < left.cols - k - s - 2 &&
-           q.y() < left.rows - k - 2;
+  const int k = p.patch_radius;
+  const int lo = -p.search_behind_px, hi = p.search_front_px;  // right-image shifts: behind the plane = +x
+  const auto inside = [&](const Eigen::Vector2d& q, int margin_left, int margin_right) {
+    return q.allFinite() && q.x() - margin_left >= k + 1 && q.y() >= k + 1 &&
+           q.x() + margin_right < left.cols - k - 2 && q.y() < left.rows - k - 2;
   };
-  if (!inside(l) || !inside(r)) return 0;
-  if (patch_sigma(left, l, k) < min_sigma || patch_sigma(right, r, k) < min_sigma) return 0;
-  for (const int shift : {-s, s}) {
-    const double self = zncc(left, l, left, l + Eigen::Vector2d(shift, 0.0), k);
-    if (!(self < p.max_self_correlation)) return 0;
+  if (!inside(l, 0, 0) || !inside(r, hi, -lo)) return 0;
+  if (patch_sigma(left, l, k) < min_sigma) return 0;
+  const double at_plane = zncc(left, l, right, r, k);
+  if (!std::isfinite(at_plane)) return 0;
+  double best_other = -1.0;
+  for (int shift = lo; shift <= hi; ++shift) {
+    if (std::abs(shift) < p.exclusion_px) continue;
+    const double score = zncc(left, l, right, r + Eigen::Vector2d(-shift, 0.0), k);
+    if (std::isfinite(score)) best_other = std::max(best_other, score);
   }
-  const double score = zncc(left, l, right, r, k);
-  if (score >= p.consistent) return +1;
-  if (score < p.inconsistent) return -1;
+  if (at_plane >= p.consistent && at_plane >= best_other + p.margin) return +1;
+  if (best_other >= p.consistent && best_other >= at_plane + p.margin) return -1;
   return 0;
-}
-
-/// Image noise [gray levels] from the median absolute difference of
-/// horizontal neighbours on a grid of pixels: texture makes few large
-/// differences, noise many small ones.
-double noise_sigma(const cv::Mat& image) {
-  std::vector<double> differences;
-  const int step = std::max(1, static_cast<int>(std::sqrt(image.rows * image.cols / 20000.0)));
-  for (int y = 0; y < image.rows; y += step) {
-    const std::uint8_t* row = image.ptr<std::uint8_t>(y);
-    for (int x = 0; x + 1 < image.cols; x += step) differences.push_back(std::abs(row[x + 1] - row[x]));
-  }
-  if (differences.empty()) return 0.0;
-  std::nth_element(differences.begin(), differences.begin() + differences.size() / 2, differences.end());
-  return 1.4826 * differences[differences.size() / 2] / std::sqrt(2.0);
 }
 
 /// Board-frame sample positions on a square grid of `step` [m] within a region.
@@ -106,7 +99,7 @@ BoardEvidence stereo_evidence(const cv::Mat& left, const cv::Mat& right, const S
                               const Eigen::Isometry3d& T_camera_board, const Target& target,
                               const BoardVerifier::Params& verifier, const StereoEvidenceParams& params) {
   BoardEvidence evidence;
-  const double min_sigma = std::max(params.min_contrast, params.noise_factor * noise_sigma(left));
+  const double min_sigma = std::max(params.min_contrast, params.noise_factor * image_noise_sigma(left));
   const double depth = std::max(0.1, T_camera_board.translation().z());
   const double step = params.sample_step_px * depth / cameras.left.fx();
   const auto vote = [&](const Eigen::Vector2d& q) {

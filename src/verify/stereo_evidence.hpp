@@ -3,10 +3,11 @@
 // little about a hole: over a plain background SGM carries the board's
 // disparity into it. The images themselves do: if the board were solid at a
 // place, the left and right views of that place would match at the disparity
-// the plane gives it. Inside a true hole the background lies at another depth
-// and the views disagree; on a wall mistaken for the board they agree. Only
-// places with horizontal texture give evidence (a plain surface, a smooth
-// ramp or a horizontal line matches at any horizontal shift).
+// the plane gives it. Inside a true hole the background lies at another
+// depth and matches at another disparity; on a wall mistaken for the board
+// the plane's disparity wins. Only places that match one disparity clearly
+// give evidence (a plain surface, a smooth ramp, a horizontal line or a
+// periodic texture match at several).
 
 #include <l2s/board_verifier.hpp>
 #include <l2s/camera.hpp>
@@ -20,14 +21,15 @@ namespace l2s::detail {
 
 struct StereoEvidenceParams {
   int patch_radius = 3;          // [px] of the zero-mean cross-correlation window (7 x 7)
-  double min_contrast = 3.0;     // [gray levels] std of both patches for a sample to count ...
+  double min_contrast = 3.0;     // [gray levels] std of the left patch for a sample to count ...
   double noise_factor = 3.0;     // ... and at least this many times the image noise
-  int discriminating_shift_px = 2;   // [px] a patch must stop matching itself when shifted this far ...
-  double max_self_correlation = 0.6;  // ... i.e. correlate below this with its shifted self
-  double consistent = 0.7;       // correlation at or above: the place lies on the plane (blocked)
-  double inconsistent = 0.3;     // correlation below: it does not (open)
+  int search_behind_px = 40;     // [px] disparities searched behind the plane (background through a hole) ...
+  int search_front_px = 12;      // ... and in front of it
+  int exclusion_px = 2;          // [px] shifts this close to the plane's are the plane's own peak
+  double consistent = 0.7;       // correlation of a clear match
+  double margin = 0.15;          // a clear winner beats the other side's best by this
   double sample_step_px = 3.0;   // [px] spacing of the samples in the left image
-  int max_samples = 400;         // per hole and for the outline band
+  int max_samples = 150;         // per hole and for the outline band
 };
 
 /// `left`, `right`: rectified 8-bit gray images of `cameras`;

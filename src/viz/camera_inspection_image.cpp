@@ -61,8 +61,11 @@ std::string camera_counts(const CameraInspection& in) {
 
 }  // namespace
 
-Image render_camera_inspection(const Image& left, const CameraInspection& in,
-                               const StereoCamera& cameras, const Target& target) {
+Image render_camera_inspection(const Image& given_left, const CameraInspection& in,
+                               const StereoCamera& given_cameras, const Target& target) {
+  // Raw images: draw on the rectified image the stages worked on.
+  const Image& left = in.rectified ? in.rectified->left : given_left;
+  const StereoCamera& cameras = in.rectified ? in.rectified->cameras : given_cameras;
   cv::Mat canvas;
   {
     Image copy = left;
@@ -120,7 +123,9 @@ Image render_camera_inspection(const Image& left, const CameraInspection& in,
   // The four labelled holes: the final centres when found; the stereo circles'
   // when a later step (the rim refinement) rejected the frame.
   if (in.report.found || (in.circles && in.circles->found)) {
-    const HoleCenters& centers = in.report.found ? in.report.centers : in.circles->centers;
+    HoleCenters centers = in.report.found ? in.report.centers : in.circles->centers;
+    if (in.report.found && in.rectified)  // the report's centres are in the physical camera's frame
+      for (Eigen::Vector3d& c : centers) c = in.rectified->R_rect_camera * c;
     const Eigen::Vector3d normal = in.T_camera_board_initial
                                        ? Eigen::Vector3d(in.T_camera_board_initial->linear().col(2))
                                        : Eigen::Vector3d(in.board_plane.normal());

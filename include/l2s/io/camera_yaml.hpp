@@ -19,10 +19,15 @@ CameraInfo read_camera_info(const std::string& path);
 /// Writes a camera_info YAML atomically.
 void write_camera_info(const std::string& path, const CameraInfo& camera);
 
-/// Reads left.yaml and right.yaml of a dataset folder and checks that the
-/// pair is rectified: same image size; fx, fy, cy equal within 1e-3 px; left
-/// |P[0][3]| below 1e-3 * fx; baseline -P_right[0][3] / fx_right > 0. The
-/// FileError names the file that breaks the rule.
-StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path);
+/// Reads left.yaml and right.yaml of a dataset folder and checks the pair for
+/// what `images` needs. Both kinds: same image size; P a rectified pair (fx, fy,
+/// cy equal within 1e-3 px; left |P[0][3]| below 1e-3 * fx; baseline
+/// -P_right[0][3] / fx_right > 0). Raw images also need, per camera: K with
+/// fx, fy > 0, last row 0 0 1 and the principal point inside the image; D of a
+/// length its model takes (plumb_bob 4, 5 or 8; equidistant 4; other models
+/// are errors); R a rotation. The FileError names the file and key that break
+/// the rule. The result's `images` is `images`.
+StereoCamera read_stereo_camera(const std::string& left_path, const std::string& right_path,
+                                ImageKind images = ImageKind::Rectified);
 
 }  // namespace l2s::io

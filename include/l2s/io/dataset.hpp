@@ -4,6 +4,7 @@
 
 #include <l2s/camera.hpp>
 #include <l2s/io/pcd.hpp>
+#include <l2s/io/ring_recovery.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
 
@@ -17,10 +18,15 @@ namespace l2s::io {
 /// One synchronised frame of both sensors.
 struct Frame {
   std::string stem;  ///< file stem shared by the three files, e.g. "000000"
-  LidarCloud lidar;  ///< ring always filled (recovered when the file had none)
+  LidarCloud lidar;  ///< ring filled (recovered when the file had none), except for a ring-free scan: empty
   Image left;        ///< as stored (gray or BGR)
   Image right;
-  bool rings_recovered = false;  ///< true when `ring` came from elevations
+  RingSource ring_source = RingSource::Field;  ///< where `lidar.ring` came from
+  /// How the rings were found when the file had none (ring_source != Field):
+  /// structure (rings or ring-free), doubts. Empty for RingSource::Field.
+  std::optional<RingRecoveryReport> ring_recovery;
+
+  bool rings_recovered() const { return ring_source != RingSource::Field; }
 };
 
 /// Read access to a dataset folder. Opening reads the YAML files and lists the
@@ -28,15 +34,23 @@ struct Frame {
 class Dataset {
  public:
   /// Throws FileError naming the file and the problem: missing folder or
-  /// camera YAML, malformed YAML, a pair that is not rectified, a missing
-  /// lidar/, left/ or right/ folder, no frames, or stems that differ between
-  /// them (the message lists the first few and which files they lack).
-  /// target.yaml is optional (defaults). Stems are sorted; files whose names
-  /// start with '.' or have another extension are not frames.
+  /// camera YAML, malformed YAML, a dataset.yaml with an unknown key or value,
+  /// a camera pair that does not fit the image kind (read_stereo_camera), a
+  /// missing lidar/, left/ or right/ folder, no frames, or stems that differ
+  /// between them (the message lists the first few and which files they lack).
+  /// dataset.yaml (images: rectified) and target.yaml are optional (defaults).
+  /// Stems are sorted; files whose names start with '.' or have another
+  /// extension are not frames.
   static Dataset open(const std::string& folder);
 
   const std::string& folder() const { return folder_; }
+  /// The cameras; cameras().images says whether the images are raw or rectified.
   const StereoCamera& cameras() const { return cameras_; }
+  bool has_dataset_file() const { return has_dataset_file_; }  ///< dataset.yaml present
+  /// What a user should know before trusting the folder (e.g. images declared
+  /// rectified while a camera has distortion), one line each; the library
+  /// does not print them, tools do.
+  const std::vector<std::string>& warnings() const { return warnings_; }
   const Target& target() const { return target_; }
   bool has_target_file() const { return has_target_file_; }
   const std::vector<std::string>& stems() const { return stems_; }
@@ -44,7 +58,9 @@ class Dataset {
 
   /// Loads frame `index`; throws FileError when a file is unreadable or an
   /// image size differs from its camera YAML (ParamError when index >= size()).
-  /// A sweep without `ring` gets recover_rings() with default parameters.
+  /// A sweep without `ring` gets its rings from its rows when it is organised
+  /// and they are lasers (rings_from_rows), else from the laser model
+  /// (recover_ring_structure), both with default parameters.
   Frame load(std::size_t index) const;
 
   /// ground_truth.yaml when present (synthetic data); FileError when malformed.
@@ -59,6 +75,8 @@ class Dataset {
   StereoCamera cameras_;
   Target target_;
   bool has_target_file_ = false;
+  bool has_dataset_file_ = false;
+  std::vector<std::string> warnings_;
   std::vector<std::string> stems_;
 };
 
@@ -67,8 +85,10 @@ class Dataset {
 /// written atomically, and the result passes Dataset::open and check_dataset.py.
 class DatasetWriter {
  public:
-  /// Throws FileError when the pair is not rectified (as read_stereo_camera
-  /// checks) or a folder cannot be created, ParamError for an impossible target.
+  /// Writes dataset.yaml (images: raw) for raw cameras; rectified ones need
+  /// none (the default). Throws FileError when the pair does not fit its image
+  /// kind (as read_stereo_camera checks) or a folder cannot be created,
+  /// ParamError for an impossible target.
   DatasetWriter(const std::string& folder, const StereoCamera& cameras, const Target& target);
 
   /// Writes lidar/STEM.pcd, left/STEM.png, right/STEM.png (an existing frame of

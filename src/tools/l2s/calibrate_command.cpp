@@ -89,6 +89,8 @@ Image overlay_image(const io::Dataset& dataset, const Calibrator& calibrator, co
 
 int run_calibrate(const CalibrateOptions& options) {
   const auto dataset = io::Dataset::open(options.dataset);
+  for (const std::string& warning : dataset.warnings())
+    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
   const Calibrator::Params params = options.params_file.empty()
                                         ? Calibrator::Params::preset(options.preset)
                                         : io::read_calibrator_params(options.params_file);
@@ -98,14 +100,23 @@ int run_calibrate(const CalibrateOptions& options) {
       options.frames > 0 ? std::min<std::size_t>(options.frames, dataset.size()) : dataset.size();
   ProgressBar progress("calibrate", count);
   io::Frame last_frame;
+  std::size_t doubtful_rings = 0;
+  std::string first_doubt;
   for (std::size_t i = 0; i < count; ++i) {
     io::Frame frame = dataset.load(i);
+    if (frame.ring_recovery && (frame.ring_recovery->doubtful ||
+                                frame.ring_recovery->structure == io::ScanStructure::RingFree)) {
+      if (doubtful_rings++ == 0) first_doubt = frame.stem + ": " + frame.ring_recovery->summary();
+    }
     const FrameReport report = calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
     if (options.verbose) print_frame_failure(report);
     progress.update(i + 1);
     last_frame = std::move(frame);
   }
   progress.finish();
+  if (doubtful_rings > 0)
+    std::fprintf(stderr, "l2s: warning: %zu of %zu sweeps have no ring field and a doubtful or no ring structure (first %s)\n",
+                 doubtful_rings, count, first_doubt.c_str());
 
   const Calibrator::Result result = calibrator.result();
   std::printf("frames    %d: lidar found the board in %d, camera in %d\n", result.frames_added,

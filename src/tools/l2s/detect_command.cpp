@@ -47,6 +47,21 @@ std::size_t find_frame(const io::Dataset& dataset, const std::string& frame) {
                                         " frames, " + stems.front() + " .. " + stems.back() + ")");
 }
 
+// A ring-free sweep is detected as the Calibrator does: with the next
+// sweeps of its window accumulated (ring_free_frames, as many as the dataset has).
+LidarInspection inspect_lidar_frame(const io::Dataset& dataset, const io::Frame& frame, std::size_t index,
+                                    const Calibrator::Params& params) {
+  const bool ring_free = frame.ring_recovery && frame.ring_recovery->structure == io::ScanStructure::RingFree;
+  if (!ring_free) return inspect_lidar(frame.lidar, dataset.target(), params);
+  std::vector<LidarCloud> sweeps{frame.lidar};
+  for (std::size_t i = index + 1; i < dataset.size() && sweeps.size() < static_cast<std::size_t>(params.ring_free_frames);
+       ++i)
+    sweeps.push_back(dataset.load(i).lidar);
+  std::printf("lidar   ring-free scan: %zu sweeps accumulated from %s on (ring_free_frames %d)\n", sweeps.size(),
+              frame.stem.c_str(), params.ring_free_frames);
+  return inspect_lidar(sweeps, dataset.target(), params);
+}
+
 std::string write_image(const fs::path& folder, const std::string& name, const Image& image) {
   if (image.empty()) return {};
   const std::string path = (folder / name).string();
@@ -56,6 +71,8 @@ std::string write_image(const fs::path& folder, const std::string& name, const I
 
 int run_detect(const DetectOptions& options) {
   const auto dataset = io::Dataset::open(options.dataset);
+  for (const std::string& warning : dataset.warnings())
+    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
   const Calibrator::Params params = options.params_file.empty()
                                         ? Calibrator::Params::preset(options.preset)
                                         : io::read_calibrator_params(options.params_file);
@@ -69,6 +86,13 @@ int run_detect(const DetectOptions& options) {
       options.params_file.empty() ? "preset " + options.preset : options.params_file;
   std::printf("frame   %s of %s (%s)\n", frame.stem.c_str(), options.dataset.c_str(),
               params_name.c_str());
+  if (frame.ring_recovery) {  // no ring field in the sweep: say how its rings were found
+    std::printf("rings   %s\n", frame.ring_recovery->summary().c_str());
+    if (frame.ring_recovery->structure == io::ScanStructure::RingFree || frame.ring_recovery->doubtful)
+      std::fprintf(stderr, "l2s: warning: ring structure of frame %s: %s\n", frame.stem.c_str(),
+                   frame.ring_recovery->doubtful ? frame.ring_recovery->doubt.c_str()
+                                                 : frame.ring_recovery->structure_reason.c_str());
+  }
   const Target& target = dataset.target();
   std::printf("target  %.3f x %.3f m board, holes r %.3f m on %.3f x %.3f m%s\n\n",
               target.board_width, target.board_height, target.hole_radius, target.hole_spacing_x,
@@ -77,7 +101,7 @@ int run_detect(const DetectOptions& options) {
 
   std::vector<std::string> failures, written;
   if (lidar) {
-    const LidarInspection inspection = inspect_lidar(frame.lidar, target, params);
+    const LidarInspection inspection = inspect_lidar_frame(dataset, frame, find_frame(dataset, options.frame), params);
     std::printf("%s\n", describe(inspection, params).c_str());
     written.push_back(write_image(debug_dir, frame.stem + "_lidar.png",
                                   render_lidar_inspection(inspection, target)));

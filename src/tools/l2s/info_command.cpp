@@ -3,6 +3,8 @@
 #include "commands.hpp"
 
 #include <l2s/io/dataset.hpp>
+#include <l2s/io/dataset_yaml.hpp>
+#include <l2s/io/ring_recovery.hpp>
 #include <l2s/metrics.hpp>
 #include <l2s/pose.hpp>
 
@@ -15,11 +17,40 @@
 namespace l2s::cli {
 namespace {
 
+// "16 rings from the ring field (laser model: 16 rings)" and the structure
+// line; warnings for doubtful or ring-free sweeps go to stderr.
+void print_rings(const io::Frame& frame) {
+  std::set<int> rings(frame.lidar.ring.begin(), frame.lidar.ring.end());
+  io::RingRecoveryReport report;
+  if (frame.ring_recovery) {
+    report = *frame.ring_recovery;
+  } else {  // a ring field: compare it with what the laser model recovers
+    LidarCloud copy;
+    copy.points = frame.lidar.points;
+    report = io::recover_ring_structure(copy);
+  }
+  std::printf("    rings: %zu distinct in the sweep, from %s", rings.size(),
+              io::to_string(frame.ring_source).c_str());
+  if (frame.ring_source == io::RingSource::Field)
+    std::printf(" (the laser model recovers %d)", report.rings);
+  std::printf("\n    structure: %s\n", report.summary().c_str());
+  if (report.structure == io::ScanStructure::RingFree)
+    std::fprintf(stderr, "l2s: warning: %s: sweep looks ring-free: %s\n", frame.stem.c_str(),
+                 report.structure_reason.c_str());
+  else if (report.doubtful)
+    std::fprintf(stderr, "l2s: warning: %s: ring structure doubtful: %s\n", frame.stem.c_str(),
+                 report.doubt.c_str());
+}
+
 int print_info(const std::string& folder, bool load_all) {
   const auto dataset = io::Dataset::open(folder);
+  for (const std::string& warning : dataset.warnings())
+    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
   const auto& left = dataset.cameras().left;
   const Target& target = dataset.target();
   std::printf("dataset   %s\n", folder.c_str());
+  std::printf("images    %s%s\n", io::to_string(dataset.cameras().images).c_str(),
+              dataset.has_dataset_file() ? " (dataset.yaml)" : " (default: no dataset.yaml)");
   std::printf("cameras   %dx%d px, fx %.1f px, fy %.1f px, c (%.1f, %.1f), baseline %.4f m\n",
               left.width, left.height, left.fx(), left.fy(), left.cx(), left.cy(),
               dataset.cameras().baseline());
@@ -34,13 +65,12 @@ int print_info(const std::string& folder, bool load_all) {
   const std::size_t count = load_all ? dataset.size() : 1;
   for (std::size_t i = 0; i < count; ++i) {
     const auto frame = dataset.load(i);
-    std::set<int> rings(frame.lidar.ring.begin(), frame.lidar.ring.end());
     const auto finite = std::count_if(frame.lidar.points.begin(), frame.lidar.points.end(),
                                       [](const Eigen::Vector3d& p) { return p.allFinite(); });
-    std::printf("  %s: %zu lidar points (%ld finite), %zu rings%s, images %s\n", frame.stem.c_str(),
-                frame.lidar.size(), static_cast<long>(finite), rings.size(),
-                frame.rings_recovered ? " (recovered from elevation)" : "",
+    std::printf("  %s: %zu lidar points (%ld finite), images %s\n", frame.stem.c_str(),
+                frame.lidar.size(), static_cast<long>(finite),
                 frame.left.channels == 1 ? "gray" : "colour");
+    print_rings(frame);
   }
   if (const auto truth = dataset.ground_truth()) {
     const Eigen::Vector3d t = truth->translation();

@@ -6,6 +6,7 @@
 
 #include <l2s/error.hpp>
 #include <l2s/io/target_yaml.hpp>
+#include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/scene_yaml.hpp>
 #include <l2s/sim/simulation.hpp>
 
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -23,6 +25,7 @@ namespace {
 struct SimulateOptions {
   std::string out_dir;
   std::string scene_file;
+  std::optional<std::uint64_t> random_scene;  // a randomised scene of the `scenes` experiment
   std::string target_file;
   std::string board = "default";
   std::string lidar = "vlp16";
@@ -95,8 +98,33 @@ void prepare_output(const std::string& folder, bool overwrite) {
     fs::remove(fs::path(folder) / file);
 }
 
+/// Writes the simulator's dataset and prints what it wrote.
+int write_dataset(const sim::DatasetSimulator& simulator, const SimulateOptions& options) {
+  const sim::SimulationConfig& config = simulator.config();
+  prepare_output(options.out_dir, options.overwrite);
+  for (const auto& warning : simulator.warnings()) std::cerr << "l2s: warning: " << warning << "\n";
+  ProgressBar progress("simulate", static_cast<std::size_t>(config.frames));
+  simulator.write(options.out_dir, [&](int done, int) { progress.update(done); });
+  progress.finish();
+  const Eigen::Vector3d t = simulator.T_lidar_camera().translation();
+  std::printf("wrote %s: %d frames, %s%s, setting %d, K = %g, seed %llu\n", options.out_dir.c_str(),
+              config.frames, config.lidar.c_str(), config.lidar_quirks.any() ? " with quirks" : "",
+              config.setting_index, config.noise_factor, static_cast<unsigned long long>(config.seed));
+  std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
+  std::printf("cameras %dx%d, %s images\n", config.rig.width, config.rig.height,
+              config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
+  return 0;
+}
+
 int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   const auto given = [&](const char* name) { return command.count(name) > 0; };
+  if (options.random_scene) {
+    const sim::RandomScene scene = sim::make_random_scene(*options.random_scene, options.frames, options.noise,
+                                                          options.threads);
+    std::printf("random scene %llu (%d redraws): %s\n", static_cast<unsigned long long>(scene.seed), scene.redraws,
+                scene.summary.c_str());
+    return write_dataset(*scene.simulator, options);
+  }
   sim::SimulationConfig config = options.scene_file.empty()
                                      ? sim::SimulationConfig::paper(options.setting, options.lidar)
                                      : sim::load_simulation_config(options.scene_file);
@@ -115,22 +143,7 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   apply_camera_options(options, command, &config);
   if (options.lidar_quirks) config.lidar_quirks = sim::LidarQuirks::all(config.lidar_quirks.table_seed);
 
-  prepare_output(options.out_dir, options.overwrite);
-  const sim::DatasetSimulator simulator(config);
-  for (const auto& warning : simulator.warnings()) std::cerr << "l2s: warning: " << warning << "\n";
-
-  ProgressBar progress("simulate", static_cast<std::size_t>(config.frames));
-  simulator.write(options.out_dir, [&](int done, int) { progress.update(done); });
-  progress.finish();
-
-  const Eigen::Vector3d t = simulator.T_lidar_camera().translation();
-  std::printf("wrote %s: %d frames, %s%s, setting %d, K = %g, seed %llu\n", options.out_dir.c_str(),
-              config.frames, config.lidar.c_str(), config.lidar_quirks.any() ? " with quirks" : "",
-              config.setting_index, config.noise_factor, static_cast<unsigned long long>(config.seed));
-  std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
-  std::printf("cameras %dx%d, %s images\n", config.rig.width, config.rig.height,
-              config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
-  return 0;
+  return write_dataset(sim::DatasetSimulator(config), options);
 }
 
 }  // namespace
@@ -153,6 +166,10 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
       ->check(CLI::ExistingFile);
   command->add_option("--scene", options->scene_file, "scene file: custom pose, board, placement")
       ->check(CLI::ExistingFile);
+  command->add_option("--random-scene", options->random_scene,
+                      "a randomised scene of the suite's `scenes` experiment (any rig, look, lidar and quirks; "
+                      "--frames, --noise, --threads apply)")
+      ->excludes("--scene");
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)");
   command->add_flag("--lenient", options->lenient, "warn instead of failing when the placement check fails");
   command->add_flag("--overwrite", options->overwrite, "replace an existing dataset in out_dir");

@@ -1,0 +1,28 @@
+#pragma once
+// One randomised scene of the `scenes` experiment (issues 7 and 8): the
+// camera side (draw_camera_scene: rig, lenses, raw or rectified images, the
+// look) and the lidar side (draw_lidar_scene: model and quirks, mounting,
+// stand, walls, clutter, board distance) drawn from one seed and composed
+// into one simulation. A draw whose board cannot be placed for both sensors
+// is drawn again from the next derived seed, so every seed gives a scene.
+
+#include <l2s/sim/simulation.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace l2s::sim {
+
+struct RandomScene {
+  std::uint64_t seed = 0;    ///< the seed asked for
+  int redraws = 0;           ///< draws rejected before this one (board could not be placed)
+  std::string summary;       ///< one line: camera side | lidar side
+  std::unique_ptr<DatasetSimulator> simulator;  ///< the scene, frames on demand
+};
+
+/// The scene of `seed` with `frames` frames at noise factor `noise_k`.
+/// Deterministic. Throws Error when no draw of 50 could be placed.
+RandomScene make_random_scene(std::uint64_t seed, int frames = 30, double noise_k = 1.0, int threads = 0);
+
+}  // namespace l2s::sim
