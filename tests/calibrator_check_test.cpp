@@ -88,6 +88,28 @@ TEST(CalibratorCheck, GoodCalibrationIsOkAndWritesItsQuality) {
   EXPECT_EQ(quality["alternatives"].size(), 1u);
 }
 
+// The check on the frames the calibrator kept, for transforms off the truth
+// by 1 deg about one camera axis or 2 cm along one, each on its own.
+TEST(CalibratorCheck, TransformOneDegreeOrTwoCentimetresOffIsNotOk) {
+  Calibrator calibrator(simulator().cameras(), simulator().config().target);
+  for (const auto& frame : frames()) calibrator.add(frame.lidar, frame.left, frame.right);
+  const CalibrationCheck check(calibrator.cameras(), calibrator.target(), calibrator.params().check);
+  const Eigen::Isometry3d truth = simulator().T_lidar_camera();
+  const auto truth_report = check.check(calibrator.check_frames(), truth);
+  EXPECT_EQ(truth_report.verdict, Verdict::Ok) << describe(truth_report);
+  for (int axis = 0; axis < 3; ++axis) {
+    Eigen::Isometry3d turned = truth;  // p_lidar = T p_camera: a turn about a camera axis acts on the right
+    turned.linear() = truth.linear() * Eigen::AngleAxisd(M_PI / 180, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+    const auto turned_report = check.check(calibrator.check_frames(), turned);
+    EXPECT_NE(turned_report.verdict, Verdict::Ok) << "1 deg about axis " << axis << "\n" << describe(turned_report);
+
+    Eigen::Isometry3d shifted = truth;
+    shifted.translation() += 0.02 * (truth.linear() * Eigen::Vector3d::Unit(axis));
+    const auto shifted_report = check.check(calibrator.check_frames(), shifted);
+    EXPECT_NE(shifted_report.verdict, Verdict::Ok) << "2 cm along axis " << axis << "\n" << describe(shifted_report);
+  }
+}
+
 /// Camera branch reports of every frame, their labels turned by 180 deg: a
 /// camera that sees the board upside down against the lidar.
 std::vector<BranchReport> turned_camera_reports(const Calibrator& calibrator, bool keep_observation) {
@@ -162,7 +184,9 @@ TEST(CalibratorCheck, WrongTargetSizeIsNeverOkWhenTheResultIsOff) {
 
 TEST(CalibratorCheck, SwappedImagesGiveNoOkResult) {
   const auto result = calibrate(simulator().config().target, true);
-  if (result.found) EXPECT_NE(result.quality.verdict, Verdict::Ok) << explain(result);
+  if (result.found) {
+    EXPECT_NE(result.quality.verdict, Verdict::Ok) << explain(result);
+  }
 }
 
 // Unsynchronised sensors: in every frame the board stood 5 cm to the side and
@@ -203,7 +227,9 @@ TEST_P(CalibratorRolledRig, CalibratesWithTheRightLabels) {
   ASSERT_TRUE(result.found) << result.reason;
   EXPECT_TRUE(accurate(result, rolled.T_lidar_camera())) << explain(result);
   EXPECT_EQ(result.quality.verdict, Verdict::Ok) << explain(result);
-  if (GetParam() == 180) EXPECT_EQ(result.labels_turned, 180);
+  if (GetParam() == 180) {
+    EXPECT_EQ(result.labels_turned, 180);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Roll, CalibratorRolledRig, ::testing::Values(90, 180),

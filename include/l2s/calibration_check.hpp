@@ -59,6 +59,8 @@ class CalibrationCheck {
     double failed_plane_offset = 0.06;      ///< [m] >= suspect_plane_offset
     double suspect_plane_tilt_deg = 1.0;    ///< [deg] lidar board against the camera's, > 0
     double failed_plane_tilt_deg = 4.0;     ///< [deg] >= suspect_plane_tilt_deg
+    double suspect_center_offset = 0.012;   ///< [m] lidar hole centres from the camera's holes, in the board plane (a calibration's own centres agree to a few mm), > 0
+    double failed_center_offset = 0.05;     ///< [m] >= suspect_center_offset
     double suspect_outside_fraction = 0.08; ///< share of lidar board returns outside the board's outline, (0, 1)
     double failed_outside_fraction = 0.3;   ///< >= suspect_outside_fraction
     double suspect_alignment_gain = 0.3;    ///< the best edge score of any scan beats this transform's by this share, (0, 1)
@@ -91,6 +93,13 @@ class CalibrationCheck {
     double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one
     double outline_px = kNaN;       ///< [px] median distance, in the image, of lidar board edges from the outline and hole rims
     double outside_fraction = kNaN; ///< share of lidar board returns outside the board (or inside a hole)
+    /// [m] In the board plane, the median offset of the lidar hole centres
+    /// from the nearest hole of the camera's board pose, over all frames
+    /// (its length). Labels play no part, so a symmetric alternative
+    /// scores the same; it sees what the edges see poorly: a ring lidar
+    /// gives no horizontal edges, so a shift along the rings' normal moves
+    /// little but the centres.
+    double center_offset = kNaN;
     double support = 0.0;           ///< scene support, what hypotheses are compared by: edge_score + depth_agreement + (1 - outside_fraction) at the best alignment of the edges near the transform, of those there is evidence for, 0..3
   };
 

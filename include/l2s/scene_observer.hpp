@@ -58,6 +58,7 @@ struct LidarObservation {
   std::vector<Eigen::Vector3d> scene_edges;  ///< [m] depth discontinuities off the board
   std::vector<Eigen::Vector3d> board_edges;  ///< [m] depth discontinuities on the board (outline, hole rims)
   std::vector<Eigen::Vector3d> board;        ///< [m] board returns of the lidar branch (thinned)
+  std::vector<Eigen::Vector3d> hole_centers; ///< [m] the lidar branch's hole centres, when it found them (else empty)
   std::vector<Eigen::Vector3d> scene;        ///< [m] the whole sweep, evenly thinned
   bool ring_free = false;                    ///< discontinuities came from the spherical grid
 };

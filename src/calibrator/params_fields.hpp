@@ -205,6 +205,8 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("failed_plane_offset", p.failed_plane_offset);
   v.field("suspect_plane_tilt_deg", p.suspect_plane_tilt_deg);
   v.field("failed_plane_tilt_deg", p.failed_plane_tilt_deg);
+  v.field("suspect_center_offset", p.suspect_center_offset);
+  v.field("failed_center_offset", p.failed_center_offset);
   v.field("suspect_outside_fraction", p.suspect_outside_fraction);
   v.field("failed_outside_fraction", p.failed_outside_fraction);
   v.field("suspect_alignment_gain", p.suspect_alignment_gain);

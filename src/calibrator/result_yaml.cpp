@@ -93,6 +93,7 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   number("plane_tilt_deg", s.plane_tilt * 180.0 / M_PI);
   number("outline_px", s.outline_px);
   number("outside_fraction", s.outside_fraction);
+  number("center_offset_m", s.center_offset);
 }
 
 // The calibration check (issue 11): verdict first, so a reader sees it at once.

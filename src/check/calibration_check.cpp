@@ -98,6 +98,8 @@ void CalibrationCheck::Params::validate() const {
   if (!(suspect_outside_fraction > 0.0 && suspect_outside_fraction < 1.0))
     throw ParamError("suspect_outside_fraction", "must be in (0, 1)");
   ordered(suspect_outside_fraction, failed_outside_fraction, "failed_outside_fraction");
+  positive(suspect_center_offset, "suspect_center_offset");
+  ordered(suspect_center_offset, failed_center_offset, "failed_center_offset");
   if (!(suspect_alignment_gain > 0.0 && suspect_alignment_gain < 1.0))
     throw ParamError("suspect_alignment_gain", "must be in (0, 1)");
   ordered(suspect_alignment_gain, failed_alignment_gain, "failed_alignment_gain");

@@ -14,7 +14,10 @@ LidarObservation observe_lidar(const LidarCloud& sweep, const LidarInspection& i
     board.reserve(inliers.size());
     for (const std::size_t i : inliers) board.push_back(inspection.cloud.points[i]);
   }
-  return observer.observe_lidar(sweep, board);
+  LidarObservation out = observer.observe_lidar(sweep, board);
+  if (found && inspection.circles && inspection.circles->found)
+    out.hole_centers.assign(inspection.circles->centers.begin(), inspection.circles->centers.end());
+  return out;
 }
 
 CameraObservation observe_camera(const Image& left, const CameraInspection& inspection, bool found,

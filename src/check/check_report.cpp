@@ -33,6 +33,9 @@ void describe_scores(std::ostringstream& out, const CalibrationCheck::Scores& s,
     out << indent
         << line("outline    lidar board edges %.1f px from the outline and rims; %.1f %% of returns off the board\n",
                 s.outline_px, 100.0 * s.outside_fraction);
+  if (std::isfinite(s.center_offset))
+    out << indent << line("centres    lidar hole centres %.1f mm from the camera's holes (board plane)\n",
+                          s.center_offset * 1e3);
   out << indent << line("support    %.3f\n", s.support);
 }
 

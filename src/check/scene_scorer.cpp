@@ -66,8 +66,9 @@ EdgeSums SceneScorer::edges(const Eigen::Isometry3d& T_camera_lidar, int level) 
 }
 
 void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationCheck::Scores& scores) const {
-  std::vector<double> offsets, spreads, tilts, outline_px;
+  std::vector<double> offsets, spreads, tilts, outline_px, center_x, center_y;
   std::size_t outside = 0, returns = 0;
+  const auto holes = target_.hole_centers();
   for (const CheckFrame* frame : board_frames_) {
     const PlaneFit fit = plane_fit(*frame, T_camera_lidar);
     offsets.push_back(fit.offset);
@@ -77,6 +78,14 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
     for (const auto& p : frame->lidar.board)
       outside += off_board((T_board_lidar * p).head<2>(), target_, params_.outline_band);
     returns += frame->lidar.board.size();
+    for (const auto& c : frame->lidar.hole_centers) {
+      const Eigen::Vector2d q = (T_board_lidar * c).head<2>();
+      Eigen::Vector2d nearest = holes[0];
+      for (const auto& h : holes)
+        if ((q - h).norm() < (q - nearest).norm()) nearest = h;
+      center_x.push_back(q.x() - nearest.x());
+      center_y.push_back(q.y() - nearest.y());
+    }
     for (const auto& e : frame->lidar.board_edges) {
       const double depth = (T_camera_lidar * e).z();
       if (depth > 0.1)
@@ -89,6 +98,7 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   scores.plane_tilt = median(tilts);
   scores.outline_px = median(outline_px);
   scores.outside_fraction = returns ? static_cast<double>(outside) / returns : CalibrationCheck::Scores::kNaN;
+  if (!center_x.empty()) scores.center_offset = std::hypot(median(center_x), median(center_y));
 }
 
 SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eigen::Isometry3d& T_camera_lidar) const {

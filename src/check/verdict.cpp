@@ -48,6 +48,10 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
           format("lidar depths are %+.1f %% off the stereo depths (a wrong target size or baseline, or a shift along "
                  "the view)",
                  100.0 * s.depth_bias));
+  j.grade(s.center_offset, p.suspect_center_offset, p.failed_center_offset,
+          format("the lidar's hole centres lie %.1f mm from the camera's holes in the board plane (a shift or turn of "
+                 "the transform)",
+                 s.center_offset * 1e3));
   j.grade(s.outside_fraction, p.suspect_outside_fraction, p.failed_outside_fraction,
           format("%.0f %% of the lidar board returns fall outside the board's outline or inside a hole "
                  "(wrong transform, or a target.yaml that is not the board)",
