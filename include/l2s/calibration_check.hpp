@@ -87,7 +87,7 @@ class CalibrationCheck {
     double depth_agreement = kNaN;  ///< share of lidar returns with stereo depth at their pixel that agree with it, 0..1
     int depth_points = 0;           ///< lidar returns compared with stereo
     double depth_bias = kNaN;       ///< median (lidar - stereo) / stereo depth of the returns within 20 %: a scale error (target size, baseline) or a shift along the view
-    double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this: a rotation error about the camera's x / y axes, whatever the translation
+    double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this beyond what a disparity bias of one matching sigma can tilt on that surface: a rotation error about the camera's x / y axes, whatever the translation
     double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's stereo board plane (+: in front)
     double plane_spread = kNaN;     ///< [m] robust sigma of those distances
     double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one

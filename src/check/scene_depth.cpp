@@ -80,9 +80,15 @@ std::vector<DepthSample> dominant_plane(const std::vector<DepthSample>& samples)
 /// [rad] Tilt of the relative depth difference across the image on the
 /// largest plane: a robust fit of relative = a + b x + c y (Tukey's
 /// biweight at 3 %, from the median: stereo smeared over from a nearer
-/// surface must not count at all); atan of |(b, c)|. NaN with fewer than 100
-/// samples or too little spread.
-double depth_tilt(const std::vector<DepthSample>& all) {
+/// surface must not count at all); atan of |(b, c)|, less what a disparity
+/// bias alone can tilt there. A bias of delta px makes stereo off by
+/// delta z / (f B) of the depth, which on a plane slanted away from the
+/// camera (the ground, a wall seen obliquely) grows across the image as the
+/// depth does: a tilt of delta / (f B) |grad z| that no rotation caused. A
+/// bias of up to one matching sigma (`depth_noise` = sigma / (f B), 1/m) is
+/// discounted, so a slanted plane shows a rotation only beyond it. NaN with
+/// fewer than 100 samples or too little spread.
+double depth_tilt(const std::vector<DepthSample>& all, double depth_noise) {
   if (all.size() < 100) return std::numeric_limits<double>::quiet_NaN();
   const std::vector<DepthSample> samples = dominant_plane(all);
   if (samples.size() < 100) return std::numeric_limits<double>::quiet_NaN();
@@ -103,7 +109,19 @@ double depth_tilt(const std::vector<DepthSample>& all) {
     if (A(1, 1) / A(0, 0) < 0.005 || A(2, 2) / A(0, 0) < 0.005) return std::numeric_limits<double>::quiet_NaN();
     x = A.ldlt().solve(b);
   }
-  return std::atan(std::hypot(x[1], x[2]));
+  // The depth's gradient across the image on the same samples, same weights.
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (const DepthSample& s : samples) {
+    const Eigen::Vector3d row(1.0, s.x, s.y);
+    const double r = (s.relative - row.dot(x)) / 0.03;
+    const double w = std::abs(r) < 1.0 ? (1.0 - r * r) * (1.0 - r * r) : 0.0;
+    A += w * row * row.transpose();
+    b += w * row * s.p_camera.z();
+  }
+  const Eigen::Vector3d z = A.ldlt().solve(b);
+  const double bias_tilt = depth_noise * std::hypot(z[1], z[2]);
+  return std::atan(std::max(0.0, std::hypot(x[1], x[2]) - bias_tilt));
 }
 
 }  // namespace
@@ -133,7 +151,9 @@ void SceneScorer::depth(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   }
   scores.depth_points = compared;
   if (relative.size() >= 30) scores.depth_bias = median(relative);
-  scores.depth_tilt = depth_tilt(off_board);
+  std::vector<double> noise;
+  for (const CheckFrame* frame : depth_frames_) noise.push_back(frame->camera.depth.depth_noise);
+  scores.depth_tilt = noise.empty() ? CalibrationCheck::Scores::kNaN : depth_tilt(off_board, median(noise));
   scores.depth_agreement = compared > 0 ? static_cast<double>(agree) / compared : CalibrationCheck::Scores::kNaN;
 }
 
