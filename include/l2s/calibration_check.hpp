@@ -65,8 +65,8 @@ class CalibrationCheck {
     double failed_outside_fraction = 0.3;   ///< >= suspect_outside_fraction
     double suspect_alignment_gain = 0.3;    ///< the best edge score of any scan beats this transform's by this share, (0, 1)
     double failed_alignment_gain = 0.6;     ///< >= suspect_alignment_gain
-    double suspect_depth_tilt_deg = 1.5;    ///< [deg] lidar against stereo depth off the board (coarse stereo alone tilts up to ~1.1 deg), > 0
-    double failed_depth_tilt_deg = 2.5;     ///< [deg] >= suspect_depth_tilt_deg
+    double suspect_depth_tilt_deg = 2.0;    ///< [deg] lidar against stereo depth off the board (coarse stereo alone tilts up to ~1.1 deg with the default preset, 1.64 deg with the paper preset on the nine settings), > 0
+    double failed_depth_tilt_deg = 3.0;     ///< [deg] >= suspect_depth_tilt_deg
     double suspect_depth_bias = 0.05;   ///< lidar against stereo depth, as a share of the depth (coarse stereo alone is off by up to ~2 % far away), > 0
     double failed_depth_bias = 0.15;    ///< >= suspect_depth_bias
     int min_edge_points = 60;         ///< fewer lidar edges seen in the images is too little evidence (suspect), >= 1
@@ -90,7 +90,7 @@ class CalibrationCheck {
     double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this beyond what a disparity bias of one matching sigma can tilt on that surface: a rotation error about the camera's x / y axes, whatever the translation
     double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's stereo board plane (+: in front)
     double plane_spread = kNaN;     ///< [m] robust sigma of those distances
-    double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one
+    double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one: the rotation between them, median over frames (per component, so noise averages out)
     double outline_px = kNaN;       ///< [px] median distance, in the image, of lidar board edges from the outline and hole rims
     double outside_fraction = kNaN; ///< share of lidar board returns outside the board (or inside a hole)
     /// [m] In the board plane, the median offset of the lidar hole centres

@@ -66,14 +66,15 @@ EdgeSums SceneScorer::edges(const Eigen::Isometry3d& T_camera_lidar, int level) 
 }
 
 void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationCheck::Scores& scores) const {
-  std::vector<double> offsets, spreads, tilts, outline_px, center_x, center_y;
+  std::vector<double> offsets, spreads, outline_px, center_x, center_y;
+  std::array<std::vector<double>, 3> tilts;
   std::size_t outside = 0, returns = 0;
   const auto holes = target_.hole_centers();
   for (const CheckFrame* frame : board_frames_) {
     const PlaneFit fit = plane_fit(*frame, T_camera_lidar);
     offsets.push_back(fit.offset);
     spreads.push_back(fit.spread);
-    tilts.push_back(fit.tilt);
+    for (int k = 0; k < 3; ++k) tilts[k].push_back(fit.tilt[k]);
     const Eigen::Isometry3d T_board_lidar = frame->camera.T_camera_board->inverse() * T_camera_lidar;
     for (const auto& p : frame->lidar.board)
       outside += off_board((T_board_lidar * p).head<2>(), target_, params_.outline_band);
@@ -86,16 +87,22 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
       center_x.push_back(q.x() - nearest.x());
       center_y.push_back(q.y() - nearest.y());
     }
-    for (const auto& e : frame->lidar.board_edges) {
-      const double depth = (T_camera_lidar * e).z();
-      if (depth > 0.1)
-        outline_px.push_back(contour_distance((T_board_lidar * e).head<2>(), target_) * view_.fx / depth);
-    }
+    // A single sweep of a ring-free lidar is too sparse for its grid
+    // discontinuities on the board to trace the outline and rims: the
+    // empty cells between its petals are edges too. Its board returns,
+    // plane and centres still count.
+    if (!frame->lidar.ring_free)
+      for (const auto& e : frame->lidar.board_edges) {
+        const double depth = (T_camera_lidar * e).z();
+        if (depth > 0.1)
+          outline_px.push_back(contour_distance((T_board_lidar * e).head<2>(), target_) * view_.fx / depth);
+      }
   }
   if (board_frames_.empty()) return;
   scores.plane_offset = median(offsets);
   scores.plane_spread = median(spreads);
-  scores.plane_tilt = median(tilts);
+  const Eigen::Vector3d tilt(median(tilts[0]), median(tilts[1]), median(tilts[2]));
+  scores.plane_tilt = std::asin(std::min(1.0, tilt.norm()));
   scores.outline_px = median(outline_px);
   scores.outside_fraction = returns ? static_cast<double>(outside) / returns : CalibrationCheck::Scores::kNaN;
   if (!center_x.empty()) scores.center_offset = std::hypot(median(center_x), median(center_y));
@@ -122,7 +129,9 @@ SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eige
   fit.spread = 1.4826 * median(deviations);
   std::vector<std::size_t> all(in_camera.size());
   std::iota(all.begin(), all.end(), 0);
-  fit.tilt = std::acos(std::min(1.0, std::abs(fit_plane(in_camera, all).normal().dot(plane.normal()))));
+  Eigen::Vector3d n_lidar = fit_plane(in_camera, all).normal();
+  if (n_lidar.dot(plane.normal()) < 0.0) n_lidar = -n_lidar;
+  fit.tilt = plane.normal().cross(n_lidar);
   return fit;
 }
 

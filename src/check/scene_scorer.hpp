@@ -52,7 +52,13 @@ class SceneScorer {
   struct PlaneFit {
     double offset = 0.0;  // [m] median height of the lidar board returns over the camera's plane
     double spread = 0.0;  // [m] their robust sigma
-    double tilt = 0.0;    // [rad] their plane against the camera's
+    // Their plane against the camera's, as a rotation vector (n_camera x
+    // n_lidar, both facing the camera; its length the sine of the tilt).
+    // Kept as a vector so that frames average their noise out: the median
+    // of per-frame tilt angles would be biased up by it (an angle is never
+    // negative), and a board seen by two or three rings tilts by a degree
+    // in any one frame.
+    Eigen::Vector3d tilt = Eigen::Vector3d::Zero();
   };
   PlaneFit plane_fit(const CheckFrame& frame, const Eigen::Isometry3d& T_camera_lidar) const;
 
