@@ -150,6 +150,29 @@ def max_frames(rows):
     return max(r["frames"] for r in rows)
 
 
+def plot_scenes(rows, out_dir):
+    """Randomised scenes have no settings to put on an axis: the share of
+    scenes calibrated within an error (failures never reach 100 %)."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, (key, scale, label) in zip(axes, METRICS):
+        for preset in sorted({r["preset"] for r in rows}):
+            runs = [r for r in rows if r["preset"] == preset]
+            errors = sorted(r[key] * scale for r in runs if r["success"])
+            if not errors:
+                continue
+            shares = [100.0 * (i + 1) / len(runs) for i in range(len(errors))]
+            ax.step(errors, shares, where="post", color=PRESET_COLORS.get(preset),
+                    label=f"{preset} ({len(errors)} of {len(runs)} found)")
+        ax.set_xscale("log")
+        ax.set_xlabel(label)
+        ax.set_ylabel("scenes calibrated within [%]")
+        ax.set_ylim(0, 100)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(loc="lower right")
+    fig.suptitle("Randomised scenes: rigs, lenses, boards, backgrounds, light, lidars and quirks")
+    save(fig, out_dir, "scenes.png")
+
+
 def save(fig, out_dir, name):
     fig.tight_layout()
     path = os.path.join(out_dir, name)
@@ -175,6 +198,8 @@ def main():
                     "Error per lidar model, paper vs default preset (K = 1, 30 frames; paper Fig. 7)")
     if "quick" in by_experiment:
         plot_lidars(by_experiment["quick"], out_dir, "quick.png", "Quick suite (VLP-16, K = 1, 10 frames)")
+    if "scenes" in by_experiment:
+        plot_scenes(by_experiment["scenes"], out_dir)
 
 
 if __name__ == "__main__":

@@ -154,6 +154,30 @@ TEST(CalibratorRobustness, BoardWithOneHoleOccludedIsRejectedWithReason) {
   EXPECT_FALSE(calibrator.result().found);
 }
 
+TEST(CalibratorRobustness, ARingFreeRecordingShorterThanOneWindowStillCalibrates) {
+  // A Livox Avia recording of 8 sweeps, less than ring_free_frames (20): the
+  // window left open is detected when the result is asked for.
+  auto config = l2s::sim::SimulationConfig::paper(1, "avia");
+  config.frames = 8;
+  config.seed = 78;
+  const DatasetSimulator avia(config);
+  Calibrator calibrator(avia.cameras(), avia.config().target, Calibrator::Params::preset("default"));
+  ASSERT_GT(calibrator.params().ring_free_frames, config.frames);
+  const auto first = avia.frame(0);
+  const l2s::BranchReport camera = calibrator.camera_branch(first.left, first.right);
+  ASSERT_TRUE(camera.found) << camera.reason;
+  for (int i = 0; i < config.frames; ++i) {
+    const auto report = calibrator.add(avia.sweep(i), camera);
+    EXPECT_FALSE(report.lidar.found);  // still accumulating
+  }
+  const auto result = calibrator.result();
+  EXPECT_EQ(result.lidar_frames, 1);
+  ASSERT_TRUE(result.found) << result.reason;
+  const auto error = l2s::pose_error(result.T_lidar_camera, avia.T_lidar_camera());
+  EXPECT_LT(error.translation, 0.02);
+  EXPECT_LT(error.rotation, 0.5 * M_PI / 180.0);
+}
+
 TEST(CalibratorRobustness, ImagesOfTheWrongSizeThrowParamError) {
   auto calibrator = make_calibrator();
   const auto frame = simulator().frame(0);

@@ -140,6 +140,10 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   EXPECT_EQ(back.reason, "too few frames: lidar 3, camera \"0\" of 30 second line");
   EXPECT_TRUE(std::isnan(back.e_t));
   EXPECT_EQ(back.cell_key(), row.cell_key());
+  EXPECT_TRUE(back.scene.empty());
+
+  row.scene = "800x600 95.0deg B=0.235m rectified | wood on plain 1.93m, colour | avia (quirks)";
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).scene, row.scene);
 
   const SuiteRow good = parse_csv_line(to_csv_line(sample_row()));
   EXPECT_EQ(good.e_t, sample_row().e_t) << "errors are written exactly";
@@ -188,6 +192,48 @@ TEST(SuiteCsv, ResumeSkipsFinishedCellsAndDropsPartialOnes) {
   const std::string other = temp_file("other.csv");
   test::write_text(other, "a,b\n1,2\n");
   EXPECT_THROW(read_suite_csv(other), FileError) << "a CSV of another tool is not overwritten";
+}
+
+TEST(SuitePlan, ScenesAreCountedNotRepeatedAndDrawTheirLidar) {
+  SuiteOptions options = options_for("scenes", 3);
+  options.scene_count = 5;
+  options.scene_frames = 7;
+  const auto plan = make_suite_plan(options);
+  ASSERT_EQ(plan.size(), 5u) << "one group per scene, repeats do not apply";
+  std::set<std::uint64_t> seeds;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    EXPECT_EQ(plan[i].setting, static_cast<int>(i) + 1);
+    EXPECT_EQ(plan[i].frames, 7);
+    ASSERT_EQ(plan[i].cells.size(), 2u);  // both presets
+    EXPECT_EQ(plan[i].cells[0].lidar, "random");
+    seeds.insert(plan[i].seed);
+  }
+  EXPECT_EQ(seeds.size(), 5u);
+  options.scene_count = 0;
+  EXPECT_THROW(make_suite_plan(options), ParamError);
+}
+
+TEST(SuiteThresholds, ScenesArePooledAndHaveTheirOwnLimits) {
+  const std::string path = temp_file("scene_thresholds.yaml");
+  test::write_text(path,
+                   "presets:\n  default: {min_success_rate: 1.0, max_e_t_mm: 1.0, max_e_r_deg: 1}\n"
+                   "experiments:\n  scenes:\n    default: {min_success_rate: 0.6, max_e_t_mm: 10, max_e_r_deg: 1}\n");
+  const SuiteThresholds thresholds = read_suite_thresholds(path);
+  std::vector<SuiteRow> rows(3, sample_row());
+  for (int i = 0; i < 3; ++i) {
+    rows[i].experiment = "scenes";
+    rows[i].lidar = "random";
+    rows[i].preset = "default";
+    rows[i].setting = i + 1;
+    rows[i].e_t = 0.004;  // above the presets' 1 mm, within the scenes' 10 mm
+    rows[i].e_r = 0.001;
+  }
+  rows[2].success = false;  // 2 of 3 found: above 0.6 when the scenes are one distribution
+  EXPECT_TRUE(check_suite_thresholds(rows, thresholds).empty());
+  rows[1].success = false;  // 1 of 3
+  const auto violations = check_suite_thresholds(rows, thresholds);
+  ASSERT_EQ(violations.size(), 1u);
+  EXPECT_NE(violations[0].find("success rate 0.33"), std::string::npos) << violations[0];
 }
 
 TEST(SuiteStats, MedianAndInterquartileRangeInterpolateLinearly) {

@@ -135,7 +135,8 @@ class Calibrator {
   /// A cloud without `ring` gets rings from elevation angles; a ring-free
   /// cloud (non-repetitive scan) is accumulated with the next ones, and every
   /// ring_free_frames sweeps give one lidar detection (the frame that
-  /// completes the window reports it; the others report "accumulating").
+  /// completes the window reports it; the others report "accumulating"; a
+  /// window left incomplete is detected as it stands by result()).
   /// Bad frames (empty, NaN, no board) are reported, never thrown; images
   /// whose size differs from the cameras throw ParamError.
   FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,

@@ -28,9 +28,10 @@ struct PlaneCandidate {
   double isolation = 0.0;
   double prior = 0.0;           ///< board-likeness before verification, 0..1 (size and isolation)
   bool plausible = false;       ///< board-sized: a hypothesis for the branch to verify
+  bool oversized = false;       ///< larger than the board, kept as a last-resort hypothesis (Params::keep_oversized)
   std::string reason;           ///< why it cannot be the board; empty when plausible
-  std::vector<std::size_t> inliers;  ///< input indices within inlier_threshold on the patch (plausible only)
-  double rms = 0.0;             ///< [m] rms distance of the refit's consensus (plausible only)
+  std::vector<std::size_t> inliers;  ///< input indices within inlier_threshold on the patch (plausible or oversized)
+  double rms = 0.0;             ///< [m] rms distance of the refit's consensus (plausible or oversized)
 };
 
 /// Finds the calibration board's plane in a lidar or stereo cloud.
@@ -48,7 +49,18 @@ class PlaneSegmenter {
     double sample_radius = 0.5;        ///< [m] 2nd/3rd sample points come from this neighbourhood, > 0
     double patch_gap_horizontal = 0.3;  ///< [m] in-plane horizontal gap bridged by a patch (> hole diameter), > 0
     double patch_gap_vertical = 0.25;  ///< [m] patch grid cell height: rows this close always join, rows 2x apart never (so the ground 0.5 m below stays apart); >= ring spacing at the board (16 beams: to 7 m), > 0
+    /// Level surfaces (within 30 deg of horizontal: floor, ceiling, table)
+    /// taken out before the board is looked for, up to this many, each
+    /// holding at least a tenth of the samples. A dense stereo floor is
+    /// otherwise cut into slanted planes with what stands on it, candidates
+    /// enough to crowd a small board out. 0..4.
+    int remove_level_planes = 0;
     double size_tolerance = 0.2;       ///< relative tolerance on the board's width/height (the patch may exceed them by this), 0..1
+    /// Patches larger than the board are ranked after every board-sized one
+    /// instead of dropped: a coarse stereo cloud merges a board with what
+    /// touches it in depth (SGM carries the board's disparity into a plain
+    /// wall behind it), and only a finer look at the region can tell.
+    bool keep_oversized = false;
     double min_length_fraction = 0.8;  ///< the patch's long side must reach this share of the board's long side (lower for clouds that may see part of it), 0..1
     double min_height_fraction = 0.15;  ///< patch height must reach this fraction of the board height, 0..1
     double isolation_band = 0.2;       ///< [m] width of the band around a patch searched for coplanar points, > 0

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <future>
+#include <optional>
 #include <sstream>
 
 namespace l2s {
@@ -77,6 +78,16 @@ struct Calibrator::Impl {
     return report;
   }
 
+  // A ring-free window still short of ring_free_frames when the result is
+  // asked for: its sweeps are data too (a recording of 1 s from a 2 s window),
+  // so it is detected as it stands. Nothing is changed: more sweeps may follow.
+  std::optional<BranchReport> partial_ring_free_window() const {
+    if (ring_free_window.empty()) return std::nullopt;
+    std::vector<const LidarCloud*> window;
+    for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
+    return detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
+  }
+
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
   // `observe` makes that, given the frame's name.
@@ -111,6 +122,11 @@ struct Calibrator::Impl {
       result.reason = "no frames added";
       return result;
     }
+    CenterAccumulator lidar_accumulated = lidar_centers;
+    if (const auto partial = partial_ring_free_window(); partial && partial->found) {
+      lidar_accumulated.add(partial->centers);
+      ++result.lidar_frames;
+    }
     const int needed = params.min_frames;
     if (result.lidar_frames < needed || result.camera_frames < needed) {
       std::ostringstream reason;
@@ -123,7 +139,7 @@ struct Calibrator::Impl {
       return result;
     }
 
-    result.lidar_centroids = lidar_centers.estimate();
+    result.lidar_centroids = lidar_accumulated.estimate();
     result.camera_centroids = camera_centers.estimate();
     if (!result.lidar_centroids.found) {
       result.reason = "lidar centres do not cluster: " + result.lidar_centroids.reason;

@@ -52,6 +52,7 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   params.camera_plane.distance_threshold = 0.01;
   params.camera_plane.inlier_threshold = 0.10;
   params.camera_plane.max_angle = 0.55;
+  params.camera_plane.remove_level_planes = 0;  // the paper segments the whole cloud
   params.discontinuity = DiscontinuityFilter::Params::paper();
   params.lidar_circles = CircleFinder::Params::paper();
   params.camera_circles = CircleFinder::Params::paper();

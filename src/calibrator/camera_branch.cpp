@@ -125,9 +125,24 @@ class CameraHypothesisTester {
     if (!attempt.stereo->found) return stop(hypothesis, "stereo", "region: " + attempt.stereo->reason);
     const StereoCloud& cloud = attempt.stereo->cloud;
     const auto kept = PassThroughFilter(f_.params.camera_pass_through).filter(cloud.points);
+    if (candidate.oversized) return board_in_region(attempt, hypothesis, subset(cloud, kept.kept));
     attempt.board = board_points(subset(cloud, kept.kept), f_.params.camera_plane.inlier_threshold,
                                  attempt.stereo->depth_noise, attempt.plane);
     if (attempt.board.size() < 3) return stop(hypothesis, "plane", "no board-plane points at full resolution");
+    return true;
+  }
+
+  /// A coarse patch larger than the board (the board merged with what
+  /// touches it in coarse depth): the board is looked for again among the
+  /// planes of its region's full-resolution cloud.
+  bool board_in_region(CameraAttempt& attempt, BoardHypothesis& hypothesis, const StereoCloud& region) {
+    PlaneSegmenter::Params params = f_.params.camera_plane;
+    params.depth_noise = attempt.stereo->depth_noise;
+    params.keep_oversized = false;
+    const PlaneSegmenter::Result planes = PlaneSegmenter(params).segment(region.points, f_.target);
+    if (!planes.found) return stop(hypothesis, "plane", "oversized patch, region at full resolution: " + planes.reason);
+    attempt.plane = planes.plane;
+    attempt.board = subset(region, planes.inliers);
     return true;
   }
 

@@ -32,6 +32,7 @@ void visit(V& v, PlaneSegmenter::Params& p) {
   v.field("patch_gap_horizontal", p.patch_gap_horizontal);
   v.field("patch_gap_vertical", p.patch_gap_vertical);
   v.field("size_tolerance", p.size_tolerance);
+  v.field("remove_level_planes", p.remove_level_planes);
   v.field("min_height_fraction", p.min_height_fraction);
   v.field("min_length_fraction", p.min_length_fraction);
   v.field("isolation_band", p.isolation_band);  // depth_noise: set per frame by the camera branch

@@ -44,6 +44,7 @@ PlaneSegmenter::Params StereoBoardLocator::Params::coarse_plane() {
   // (widened to the whole board) and the verification decide.
   plane.min_length_fraction = 0.5;
   plane.size_tolerance = 0.5;
+  plane.keep_oversized = true;
   return plane;
 }
 

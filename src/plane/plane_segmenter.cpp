@@ -40,6 +40,8 @@ std::string format_size(double a, double b) {
 }
 
 /// Empty when the patch has the board's size, else why not.
+constexpr const char* kLargerThanTheBoard = "larger than the board";
+
 std::string board_mismatch(const detail::Patch& patch, std::size_t patch_points, const Target& target,
                            const PlaneSegmenter::Params& params) {
   const double board_long = std::max(target.board_width, target.board_height);
@@ -48,8 +50,8 @@ std::string board_mismatch(const detail::Patch& patch, std::size_t patch_points,
   const std::string seen = "patch " + format_size(patch.extent_long, patch.extent_short) + ", board " +
                            format_size(board_long, board_short);
   if (patch_points < params.min_support) return "patch has too few points (" + std::to_string(patch_points) + ")";
-  if (patch.extent_long > board_long * (1.0 + tol)) return "larger than the board (" + seen + ")";
-  if (patch.extent_short > board_short * (1.0 + tol)) return "larger than the board (" + seen + ")";
+  if (patch.extent_long > board_long * (1.0 + tol)) return kLargerThanTheBoard + (" (" + seen + ")");
+  if (patch.extent_short > board_short * (1.0 + tol)) return kLargerThanTheBoard + (" (" + seen + ")");
   if (patch.extent_long < board_long * params.min_length_fraction) return "smaller than the board (" + seen + ")";
   // Lidar rings sample the height only at ring elevations: a loose lower bound.
   if (patch.extent_short < board_short * params.min_height_fraction)
@@ -157,6 +159,29 @@ Plane refit_hypothesis(const Plane& hypothesis, const Samples& samples, const Pl
   return detail::facing_origin(plane);
 }
 
+/// Drops the samples of up to `count` level planes (see Params::remove_level_planes).
+void remove_level_planes(Samples& s, int count, const detail::VerticalPlaneRansacParams& vertical,
+                         const Thresholds& thresholds, std::mt19937_64& rng) {
+  constexpr double kLevelCos = 0.866;        // within 30 deg of horizontal
+  constexpr double kMinShare = 0.1;          // of the samples left
+  detail::VerticalPlaneRansacParams level = vertical;
+  level.max_sin_axis = 1.0;
+  level.min_cos_axis = kLevelCos;
+  for (int k = 0; k < count && s.points.size() >= 3; ++k) {
+    const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(s.points, level, rng);
+    if (!found.found || static_cast<double>(found.consensus) < kMinShare * static_cast<double>(s.points.size()))
+      return;
+    Samples rest;
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      if (std::abs(found.plane.signedDistance(s.points[i])) <= thresholds.inliers(s.points[i])) continue;
+      rest.points.push_back(s.points[i]);
+      rest.tolerance.push_back(s.tolerance[i]);
+    }
+    s.points.swap(rest.points);
+    s.tolerance.swap(rest.tolerance);
+  }
+}
+
 /// One extracted plane: its patch and, when board-sized, its refit and inliers.
 struct Extraction {
   PlaneCandidate candidate;
@@ -230,6 +255,12 @@ Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& point
     return e;
   }
   c.reason = board_mismatch(e.patch, c.patch_points, target, params);
+  if (params.keep_oversized && c.reason.rfind(kLargerThanTheBoard, 0) == 0) {
+    c.oversized = true;
+    c.isolation = around.isolation();
+    refit(e, points, finite, grid, patch_consensus, params);
+    return e;
+  }
   if (!c.reason.empty()) return e;
   c.isolation = around.isolation();
   c.prior = board_prior(c, target, params.size_tolerance);
@@ -245,6 +276,9 @@ void rank(PlaneSegmenter::Result& result) {
   std::stable_sort(result.ranking.begin(), result.ranking.end(), [&](int a, int b) {
     return result.candidates[a].prior > result.candidates[b].prior;
   });
+  // Last resorts, in extraction order (most support first).
+  for (std::size_t i = 0; i < result.candidates.size(); ++i)
+    if (result.candidates[i].oversized) result.ranking.push_back(static_cast<int>(i));
   if (!result.ranking.empty()) {
     const PlaneCandidate& best = result.candidates[result.ranking.front()];
     result.found = true;
@@ -277,6 +311,7 @@ void PlaneSegmenter::Params::validate() const {
   if (max_candidates < 1) throw ParamError("max_candidates", "must be >= 1");
   if (min_support < 3) throw ParamError("min_support", "must be >= 3");
   if (max_samples < 100) throw ParamError("max_samples", "must be >= 100");
+  if (remove_level_planes < 0 || remove_level_planes > 4) throw ParamError("remove_level_planes", "must be 0..4");
   if (!(size_tolerance >= 0.0 && size_tolerance < 1.0)) throw ParamError("size_tolerance", "must be in [0, 1)");
   if (!(min_height_fraction >= 0.0 && min_height_fraction <= 1.0))
     throw ParamError("min_height_fraction", "must be in [0, 1]");
@@ -295,6 +330,7 @@ PlaneSegmenter::Params PlaneSegmenter::Params::stereo() {
   params.patch_gap_horizontal = 0.1;        // dense cloud: holes need not be bridged by one ring
   params.patch_gap_vertical = 0.1;
   params.max_candidates = 6;  // each costs a pass over a dense cloud
+  params.remove_level_planes = 2;
   return params;
 }
 
@@ -325,6 +361,7 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
   ransac.sample_radius = params_.sample_radius;
   ransac.tolerance = &s.tolerance;
 
+  remove_level_planes(s, params_.remove_level_planes, ransac, thresholds, rng);
   for (int k = 0; k < params_.max_candidates && s.points.size() >= 3; ++k) {
     const detail::VerticalPlaneRansacResult found = detail::find_vertical_plane(s.points, ransac, rng);
     if (!found.found) break;

@@ -93,7 +93,8 @@ VerticalPlaneRansacResult find_vertical_plane(const std::vector<Eigen::Vector3d>
     const double area = normal.norm();
     if (!(area > kMinSinTriangle * ab.norm() * ac.norm())) continue;
     normal /= area;
-    if (std::abs(normal.dot(params.axis)) > params.max_sin_axis) continue;
+    const double along_axis = std::abs(normal.dot(params.axis));
+    if (along_axis > params.max_sin_axis || along_axis < params.min_cos_axis) continue;
 
     const Plane hypothesis(normal, samples[a]);
     const std::size_t pre = count(hypothesis, prefix);

@@ -13,6 +13,7 @@ namespace l2s::detail {
 struct VerticalPlaneRansacParams {
   double distance_threshold = 0.01;  // [m]
   double max_sin_axis = 0.52;        // sin(max_angle): |normal . axis| must not exceed it
+  double min_cos_axis = 0.0;         // |normal . axis| must reach it (> 0: a level plane, not a vertical one)
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   int max_iterations = 1000;
   double sample_radius = 0.5;  // [m]

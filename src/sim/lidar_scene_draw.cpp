@@ -81,7 +81,8 @@ LidarSceneDraw draw_lidar_scene(std::mt19937_64& rng) {
   draw.quirks.return_mode = mode < 0.7 ? ReturnMode::Strongest : mode < 0.9 ? ReturnMode::Last : ReturnMode::First;
   draw.lidar_pose = draw_mounting(rng);
   draw.layout = draw_layout(rng, draw.lidar_pose);
-  draw.board_distance = uniform(rng, 1.5, reach(draw.lidar));
+  draw.reach = reach(draw.lidar);
+  draw.board_distance = uniform(rng, 1.5, draw.reach);
   draw.board_yaw = (chance(rng, 0.5) ? 1.0 : -1.0) * uniform(rng, 0.1, 0.5);
   draw.board_pitch = uniform(rng, -0.1, 0.1);
   draw.board_roll = uniform(rng, -0.1, 0.1);

@@ -8,6 +8,8 @@
 #include <l2s/sim/camera_scene_draw.hpp>
 #include <l2s/sim/lidar_scene_draw.hpp>
 
+#include <algorithm>
+
 #include "sim/random.hpp"
 
 namespace l2s::sim {
@@ -16,6 +18,27 @@ namespace {
 constexpr int kMaxDraws = 50;
 constexpr double kOpenSpaceWall = 60.0;  // [m] behind the board: beyond any sensor's working range here
 constexpr std::uint64_t kSceneStream = 0x5CE9EULL;
+constexpr double kNearest = 1.5;             // [m] the lidar draw's nearest board
+constexpr double kMinHolePixels = 10.0;      // [px] hole radius in the image at the farthest board
+constexpr double kMinBoardDisparity = 10.0;  // [px] disparity at the farthest board
+
+/// [m] how far the board may stand for this rig to resolve it: a hole at
+/// least kMinHolePixels in radius (its rim is the camera's evidence) and a
+/// disparity of kMinBoardDisparity (depth noise grows as d^2 / (fx B)). A user
+/// places the board for the rig at hand; a draw that this rig cannot resolve
+/// tests the draw, not the method.
+double camera_reach(const StereoRig& rig, double hole_radius) {
+  return std::min(rig.fx() * hole_radius / kMinHolePixels, rig.fx() * rig.baseline / kMinBoardDisparity);
+}
+
+/// The lidar draw's board distance, uniform over [kNearest, lidar reach], mapped
+/// onto [kNearest, min(lidar reach, camera reach)] so it stays uniform.
+double shared_distance(const LidarSceneDraw& lidar, double camera_limit) {
+  const double lidar_limit = lidar.reach;
+  if (camera_limit >= lidar_limit) return lidar.board_distance;
+  const double share = (lidar.board_distance - kNearest) / (lidar_limit - kNearest);
+  return kNearest + share * (camera_limit - kNearest);
+}
 
 SimulationConfig compose(const CameraSceneDraw& camera, const LidarSceneDraw& lidar, std::uint64_t seed, int frames,
                          double noise_k, int threads) {
@@ -40,7 +63,13 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
   for (int draw = 0; draw < kMaxDraws; ++draw, ++scene.redraws) {
     std::mt19937_64 rng(detail::hash_counters(seed, kSceneStream, static_cast<std::uint64_t>(draw)));
     const CameraSceneDraw camera = draw_camera_scene(rng);
-    const LidarSceneDraw lidar = draw_lidar_scene(rng);
+    LidarSceneDraw lidar = draw_lidar_scene(rng);
+    const double camera_limit = camera_reach(camera.rig, SimulationConfig{}.target.hole_radius);
+    if (camera_limit < kNearest) {  // this rig sees no board at a distance the lidar draw allows
+      last_failure = "the rig resolves the holes only up to " + std::to_string(camera_limit) + " m";
+      continue;
+    }
+    lidar.board_distance = shared_distance(lidar, camera_limit);
     const SimulationConfig config = compose(camera, lidar, seed, frames, noise_k, threads);
     try {
       scene.simulator = std::make_unique<DatasetSimulator>(config);

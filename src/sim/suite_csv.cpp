@@ -20,8 +20,8 @@ namespace {
 
 constexpr const char* kHeader =
     "experiment,setting,lidar,noise_k,frames,preset,seed,repetition,success,reason,e_t_m,e_r_rad,"
-    "lidar_frames,camera_frames,wall_s";
-constexpr std::size_t kColumns = 15;
+    "lidar_frames,camera_frames,wall_s,scene";
+constexpr std::size_t kColumns = 16;
 
 std::string quote(const std::string& text) {
   std::string flat = text;
@@ -92,7 +92,7 @@ std::string to_csv_line(const SuiteRow& r) {
       << ',' << r.frames << ',' << quote(r.preset) << ',' << r.seed << ',' << r.repetition << ','
       << (r.success ? 1 : 0) << ',' << quote(r.reason) << ',' << number(r.e_t, 17) << ','
       << number(r.e_r, 17) << ',' << r.lidar_frames << ',' << r.camera_frames << ','
-      << number(r.wall_s, 4);
+      << number(r.wall_s, 4) << ',' << quote(r.scene);
   return out.str();
 }
 
@@ -120,6 +120,7 @@ SuiteRow parse_csv_line(const std::string& line) {
     r.lidar_frames = to_int(f[12]);
     r.camera_frames = to_int(f[13]);
     r.wall_s = to_double(f[14]);
+    r.scene = f[15];
     return r;
   } catch (const std::logic_error& error) {  // std::stoi and friends
     throw Error(std::string("bad number (") + error.what() + ")");
@@ -196,7 +197,7 @@ SuiteResume resume_suite(const std::vector<SuiteGroup>& plan, const std::vector<
 
 void sort_suite_rows(std::vector<SuiteRow>& rows) {
   const auto experiment_rank = [](const std::string& name) {
-    static const std::vector<std::string> order = {"quick", "frames", "noise", "lidars"};
+    static const std::vector<std::string> order = {"quick", "frames", "noise", "lidars", "scenes"};
     const auto at = std::find(order.begin(), order.end(), name);
     return static_cast<int>(at - order.begin());
   };

@@ -25,7 +25,7 @@ struct ExperimentSpec {
   bool every_frame = false;
 };
 
-ExperimentSpec spec_of(const std::string& experiment) {
+ExperimentSpec spec_of(const std::string& experiment, const SuiteOptions& options) {
   std::vector<int> all_settings;
   for (int s = 1; s <= kSettings; ++s) all_settings.push_back(s);
   if (experiment == "frames") return {all_settings, {"vlp16"}, {1.0}, 40, true};
@@ -33,7 +33,13 @@ ExperimentSpec spec_of(const std::string& experiment) {
   if (experiment == "lidars") return {all_settings, {"vlp16", "hdl32", "hdl64"}, {1.0}, 30, false};
   // Quick: a simple, a rotated and the hardest setting of Table I.
   if (experiment == "quick") return {{1, 3, 8}, {"vlp16"}, {1.0}, 10, false};
-  throw ParamError("experiment", "unknown experiment '" + experiment + "' (frames, noise, lidars or quick)");
+  if (experiment == "scenes") {
+    std::vector<int> scenes;
+    for (int s = 1; s <= options.scene_count; ++s) scenes.push_back(s);
+    return {scenes, {"random"}, {1.0}, options.scene_frames, false};
+  }
+  throw ParamError("experiment",
+                   "unknown experiment '" + experiment + "' (frames, noise, lidars, scenes or quick)");
 }
 
 // FNV-1a: a stable hash of a name (std::hash is not specified across platforms).
@@ -53,7 +59,9 @@ std::string format_k(double k) {
 
 void SuiteOptions::validate() const {
   if (experiments.empty()) throw ParamError("experiment", "at least one experiment");
-  for (const auto& experiment : experiments) spec_of(experiment);
+  if (scene_count < 1 || scene_count > 100000) throw ParamError("count", "scenes must be 1..100000");
+  if (scene_frames < 1 || scene_frames > 10000) throw ParamError("scene_frames", "must be 1..10000");
+  for (const auto& experiment : experiments) spec_of(experiment, *this);
   if (presets.empty()) throw ParamError("preset", "at least one preset");
   for (const auto& preset : presets)
     if (preset != "default" && preset != "paper")
@@ -104,10 +112,11 @@ std::vector<SuiteGroup> make_suite_plan(const SuiteOptions& options) {
   options.validate();
   std::vector<SuiteGroup> plan;
   for (const auto& experiment : options.experiments) {
-    const ExperimentSpec spec = spec_of(experiment);
+    const ExperimentSpec spec = spec_of(experiment, options);
     for (const double k : spec.noise_factors)
       for (const int setting : spec.settings)
-        for (int repetition = 0; repetition < options.repeats; ++repetition) {
+        // A scene is its own draw: more scenes, not repetitions, give more runs.
+        for (int repetition = 0; repetition < (experiment == "scenes" ? 1 : options.repeats); ++repetition) {
           SuiteGroup group;
           group.experiment = experiment;
           group.setting = setting;

@@ -7,6 +7,7 @@
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
 #include <l2s/metrics.hpp>
+#include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <chrono>
@@ -26,8 +27,9 @@ double seconds_since(Clock::time_point start) {
 }
 
 SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
-                  const Eigen::Isometry3d& T_true, double wall_s) {
+                  const Eigen::Isometry3d& T_true, double wall_s, const std::string& scene) {
   SuiteRow row = SuiteRow::of(cell);
+  row.scene = scene;
   row.frames = result.frames_added;
   row.success = result.found;
   row.reason = result.reason;
@@ -59,8 +61,20 @@ std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector
   std::map<std::string, std::unique_ptr<DatasetSimulator>> simulators;
   std::map<std::string, std::string> failures;
   const DatasetSimulator* source = nullptr;
+  std::string scene;  // what a random scene drew
   for (const auto& cell : cells) {
     if (simulators.count(cell.lidar) || failures.count(cell.lidar)) continue;
+    if (group.experiment == "scenes") {
+      try {
+        RandomScene drawn = make_random_scene(group.seed, group.frames, group.noise_k, threads);
+        scene = drawn.summary;
+        source = drawn.simulator.get();
+        simulators[cell.lidar] = std::move(drawn.simulator);
+      } catch (const Error& error) {
+        failures[cell.lidar] = std::string("simulation: ") + error.what();
+      }
+      continue;
+    }
     SimulationConfig config = SimulationConfig::paper(group.setting, cell.lidar);
     config.frames = group.frames;
     config.noise_factor = group.noise_k;
@@ -111,7 +125,7 @@ std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector
       run.seconds += seconds_since(start) + camera.at(run.cell->preset).milliseconds * 1e-3;
       if (result)
         evaluations[run.cell].push_back(
-            evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds));
+            evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds, scene));
     }
     if (on_frame) on_frame();
   }

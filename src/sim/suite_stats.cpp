@@ -3,6 +3,8 @@
 
 #include <l2s/sim/suite_results.hpp>
 
+#include "sim/suite_scenes_summary.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,7 @@ const char* title_of(const std::string& experiment) {
   if (experiment == "noise") return "noise: error against the noise factor K (Fig. 6; VLP-16, 30 frames)";
   if (experiment == "lidars") return "lidars: error per lidar model (Fig. 7; K = 1, 30 frames)";
   if (experiment == "quick") return "quick: CI smoke test (VLP-16, K = 1, 10 frames)";
+  if (experiment == "scenes") return "scenes: randomised rigs, scenes and lidars (K = 1)";
   return "";
 }
 
@@ -97,6 +100,14 @@ std::string suite_summary_markdown(const std::vector<SuiteRow>& all_rows) {
          "interquartile range (IQR) of e_t and e_r over the successful ones (failures are counted, "
          "never dropped).\n";
   for (const auto& experiment : experiments) {
+    if (experiment == "scenes") {
+      std::vector<const SuiteRow*> scene_rows;
+      for (const auto& row : rows)
+        if (row.experiment == experiment) scene_rows.push_back(&row);
+      out << "\n## " << title_of(experiment) << "\n\n";
+      detail::write_scenes_summary(out, scene_rows);
+      continue;
+    }
     int last = 0;
     for (const auto& row : rows)
       if (row.experiment == experiment) last = std::max(last, row.frames);

@@ -15,12 +15,12 @@
 
 namespace l2s::sim {
 
-SuiteThresholds read_suite_thresholds(const std::string& path) {
-  const YAML::Node root = io::yaml::load_file(path);
-  if (!io::yaml::has_key(root, "presets") || !root["presets"].IsMap())
-    throw FileError(path, "expected a map 'presets: {name: {min_success_rate, max_e_t_mm, max_e_r_deg}}'");
-  SuiteThresholds thresholds;
-  for (const auto& entry : root["presets"]) {
+namespace {
+
+SuiteThresholds::PresetLimits read_preset_limits(const YAML::Node& presets, const std::string& where,
+                                                 const std::string& path) {
+  SuiteThresholds::PresetLimits out;
+  for (const auto& entry : presets) {
     const auto name = entry.first.as<std::string>();
     const YAML::Node& node = entry.second;
     SuiteThresholds::Limits limits;
@@ -28,8 +28,29 @@ SuiteThresholds read_suite_thresholds(const std::string& path) {
     limits.max_e_t = io::yaml::read_double(node, "max_e_t_mm", path) * 1e-3;
     limits.max_e_r = io::yaml::read_double(node, "max_e_r_deg", path) * M_PI / 180.0;
     if (limits.min_success_rate < 0.0 || limits.min_success_rate > 1.0)
-      throw FileError(path, "presets." + name + ".min_success_rate must be 0..1");
-    thresholds.presets.emplace_back(name, limits);
+      throw FileError(path, where + "." + name + ".min_success_rate must be 0..1");
+    out.emplace_back(name, limits);
+  }
+  return out;
+}
+
+}  // namespace
+
+SuiteThresholds read_suite_thresholds(const std::string& path) {
+  const YAML::Node root = io::yaml::load_file(path);
+  if (!io::yaml::has_key(root, "presets") || !root["presets"].IsMap())
+    throw FileError(path, "expected a map 'presets: {name: {min_success_rate, max_e_t_mm, max_e_r_deg}}'");
+  SuiteThresholds thresholds;
+  thresholds.presets = read_preset_limits(root["presets"], "presets", path);
+  if (io::yaml::has_key(root, "experiments")) {
+    if (!root["experiments"].IsMap())
+      throw FileError(path, "expected a map 'experiments: {experiment: {preset: {...}}}'");
+    for (const auto& entry : root["experiments"]) {
+      const auto experiment = entry.first.as<std::string>();
+      if (!entry.second.IsMap()) throw FileError(path, "experiments." + experiment + " must be a map of presets");
+      thresholds.experiments.emplace_back(
+          experiment, read_preset_limits(entry.second, "experiments." + experiment, path));
+    }
   }
   return thresholds;
 }
@@ -39,21 +60,28 @@ std::vector<std::string> check_suite_thresholds(const std::vector<SuiteRow>& row
   // A cell variant: all repetitions of one (experiment, setting, lidar, K, preset).
   using Key = std::tuple<std::string, int, std::string, double, std::string>;
   std::map<Key, int> last_frames;
+  const auto key_of = [](const SuiteRow& row) {
+    const int setting = row.experiment == "scenes" ? 0 : row.setting;  // all scenes are one distribution
+    return Key{row.experiment, setting, row.lidar, row.noise_k, row.preset};
+  };
   for (const auto& row : rows) {
-    int& last = last_frames[{row.experiment, row.setting, row.lidar, row.noise_k, row.preset}];
+    int& last = last_frames[key_of(row)];
     last = std::max(last, row.frames);
   }
   std::map<Key, std::vector<const SuiteRow*>> variants;
   for (const auto& row : rows) {
-    const Key key{row.experiment, row.setting, row.lidar, row.noise_k, row.preset};
+    const Key key = key_of(row);
     if (row.frames == last_frames[key]) variants[key].push_back(&row);
   }
 
   std::vector<std::string> violations;
   for (const auto& [key, variant_rows] : variants) {
     const auto& [experiment, setting, lidar, k, preset] = key;
+    const SuiteThresholds::PresetLimits* table = &thresholds.presets;
+    for (const auto& [name, experiment_limits] : thresholds.experiments)
+      if (name == experiment) table = &experiment_limits;
     const SuiteThresholds::Limits* limits = nullptr;
-    for (const auto& [name, preset_limits] : thresholds.presets)
+    for (const auto& [name, preset_limits] : *table)
       if (name == preset) limits = &preset_limits;
     if (!limits) continue;
     const SuiteStats stats = suite_stats(variant_rows);

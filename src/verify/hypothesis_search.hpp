@@ -1,6 +1,7 @@
 #pragma once
 // The hypothesise-then-verify loop shared by the branches (private): plausible
-// plane candidates are tried most board-like first; each branch's `try_one`
+// plane candidates are tried most board-like first (oversized ones last, and
+// only while nothing is verified); each branch's `try_one`
 // runs its stages on one candidate, and when four holes are found the
 // BoardVerifier judges the evidence. The best verified hypothesis wins; the
 // search stops early at a confident one. Every hypothesis tried is logged
@@ -27,6 +28,8 @@ std::optional<Outcome> search_hypotheses(const PlaneSegmenter::Result& planes, c
   int best_index = -1;
   const int tries = std::min<int>(static_cast<int>(planes.ranking.size()), verifier.params().max_hypotheses);
   for (int k = 0; k < tries; ++k) {
+    // Oversized patches are last resorts: not tried once a board-sized one was verified.
+    if (best_index >= 0 && planes.candidates[planes.ranking[k]].oversized) break;
     BoardHypothesis hypothesis;
     hypothesis.candidate = planes.ranking[k];
     hypothesis.prior = planes.candidates[hypothesis.candidate].prior;

@@ -106,7 +106,10 @@ BoardEvidence stereo_evidence(const cv::Mat& left, const cv::Mat& right, const S
     const Eigen::Vector3d p = T_camera_board * Eigen::Vector3d(q.x(), q.y(), 0.0);
     return photo_vote(left, right, cameras.left.project(p), cameras.right.project(p), min_sigma, params);
   };
-  const double open_radius = target.hole_radius - verifier.hole_margin;
+  // A sample's patch must not reach the rim or the board's border: their
+  // edges match at the board's disparity whatever lies behind.
+  const double patch_reach = (params.patch_radius + 1) * depth / cameras.left.fx();
+  const double open_radius = target.hole_radius - verifier.hole_margin - patch_reach;
   const auto holes = target.hole_centers();
   for (int h = 0; h < 4; ++h) {
     const Eigen::Vector2d c = holes[h], reach = Eigen::Vector2d::Constant(open_radius);
@@ -118,8 +121,8 @@ BoardEvidence stereo_evidence(const cv::Mat& left, const cv::Mat& right, const S
       if (v < 0) ++evidence.hole_open[h];
     }
   }
-  const Eigen::Vector2d inner(0.5 * target.board_width + verifier.outline_gap,
-                              0.5 * target.board_height + verifier.outline_gap);
+  const Eigen::Vector2d inner(0.5 * target.board_width + verifier.outline_gap + patch_reach,
+                              0.5 * target.board_height + verifier.outline_gap + patch_reach);
   const Eigen::Vector2d outer = inner + Eigen::Vector2d::Constant(verifier.outline_width);
   const auto band = grid(-outer, outer, step, params.max_samples, [&](const Eigen::Vector2d& q) {
     return std::abs(q.x()) > inner.x() || std::abs(q.y()) > inner.y();

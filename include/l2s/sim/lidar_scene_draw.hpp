@@ -32,6 +32,7 @@ struct LidarSceneDraw {
   SensorSetting lidar_pose;     ///< in the camera body frame: within 1 m, yaw +-0.7, pitch and roll +-0.3 rad
   SceneLayout layout;           ///< stand 70 %, side walls 50 % (1-3 m), 0-3 near boxes, pillar 30 %
   double board_distance = 3.0;  ///< [m] 1.5 m up to the model's reach: VLP-16 3.5, HDL-32E 4.5, Mid-360 5, others 6
+  double reach = 6.0;           ///< [m] that reach (the farthest board_distance of this model)
   double board_yaw = 0.3;       ///< [rad] 0.1..0.5 either way (never square to the sensors)
   double board_pitch = 0.0;     ///< [rad] +-0.1
   double board_roll = 0.0;      ///< [rad] +-0.1

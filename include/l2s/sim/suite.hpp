@@ -12,12 +12,17 @@
 namespace l2s::sim {
 
 /// What to run. Experiments: "frames" (Fig. 5), "noise" (Fig. 6), "lidars"
-/// (Fig. 7), or "quick" (a CI smoke test: 3 settings, VLP-16, K = 1, 10 frames).
+/// (Fig. 7), "quick" (a CI smoke test: 3 settings, VLP-16, K = 1, 10 frames),
+/// or "scenes" (`scene_count` randomised scenes, sim::make_random_scene: other
+/// rigs, lenses, raw images, boards, backgrounds, light, lidars and their
+/// quirks; one run per scene, `setting` numbers the scene).
 struct SuiteOptions {
   std::vector<std::string> experiments = {"frames", "noise", "lidars"};
   std::vector<std::string> presets = {"default", "paper"};  ///< Calibrator presets
   int repeats = 3;         ///< repetitions per cell (independent seeds), >= 1
   std::uint64_t seed = 1;  ///< base seed; every cell's seed derives from it
+  int scene_count = 20;    ///< scenes of the "scenes" experiment, >= 1
+  int scene_frames = 20;   ///< frames per scene (2 s at 10 Hz: a ring-free lidar needs them)
 
   /// Throws ParamError naming the field.
   void validate() const;
@@ -26,8 +31,8 @@ struct SuiteOptions {
 /// One calibration run: simulated data, preset, and how often it is evaluated.
 struct SuiteCell {
   std::string experiment;
-  int setting = 1;          ///< Table I setting, 1..9
-  std::string lidar;        ///< vlp16 | hdl32 | hdl64
+  int setting = 1;          ///< Table I setting, 1..9 (scenes: the scene's number)
+  std::string lidar;        ///< vlp16 | hdl32 | hdl64 (scenes: "random", the scene draws it)
   double noise_k = 1.0;     ///< noise factor K
   int frames = 30;          ///< frames added
   std::string preset;       ///< default | paper
@@ -79,6 +84,7 @@ struct SuiteRow {
   int lidar_frames = 0;      ///< frames whose lidar branch found four centres
   int camera_frames = 0;     ///< frames whose camera branch found four centres
   double wall_s = 0.0;       ///< [s] calibration time of this run so far (simulation excluded)
+  std::string scene;         ///< scenes: what was drawn (RandomScene::summary), else empty
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;

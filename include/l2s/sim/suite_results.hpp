@@ -68,12 +68,17 @@ struct SuiteThresholds {
     double max_e_t = 0.0;           ///< [m] median over successful repetitions
     double max_e_r = 0.0;           ///< [rad]
   };
-  std::vector<std::pair<std::string, Limits>> presets;  ///< preset name -> limits
+  using PresetLimits = std::vector<std::pair<std::string, Limits>>;  ///< preset name -> limits
+  PresetLimits presets;
+  /// Limits of one experiment that replace `presets` for it (experiment -> preset -> limits).
+  std::vector<std::pair<std::string, PresetLimits>> experiments;
 };
-/// Reads `presets: {name: {min_success_rate, max_e_t_mm, max_e_r_deg}}`; throws FileError.
+/// Reads `presets: {name: {min_success_rate, max_e_t_mm, max_e_r_deg}}` and the
+/// optional `experiments: {experiment: {name: {...}}}`; throws FileError.
 SuiteThresholds read_suite_thresholds(const std::string& path);
 /// One line per cell variant (experiment, setting, lidar, K, preset, final
-/// frame count) that breaks its preset's limits; empty when all pass.
+/// frame count) that breaks its preset's limits; empty when all pass. The
+/// scenes of "scenes" are one variant: their limits hold for the distribution.
 std::vector<std::string> check_suite_thresholds(const std::vector<SuiteRow>& rows,
                                                 const SuiteThresholds& thresholds);
 

@@ -37,6 +37,8 @@ struct SuiteCommandOptions {
   std::string preset = "both";
   std::string thresholds;
   int repeats = 3;
+  int scene_count = 20;
+  int scene_frames = 20;
   int jobs = 0;
   std::uint64_t seed = 1;
   bool quick = false;
@@ -53,12 +55,17 @@ extern "C" void on_interrupt(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
-sim::SuiteOptions suite_options(const SuiteCommandOptions& o, bool repeats_given) {
+// Scenes in --quick: a few, enough to see that other rigs and lidars still work.
+constexpr int kQuickScenes = 3;
+
+sim::SuiteOptions suite_options(const SuiteCommandOptions& o, bool repeats_given, bool count_given) {
   sim::SuiteOptions options;
   if (o.quick)
-    options.experiments = {"quick"};
+    options.experiments = {"quick", "scenes"};
   else if (o.experiment != "all")
     options.experiments = {o.experiment};
+  options.scene_count = o.quick && !count_given ? kQuickScenes : o.scene_count;
+  options.scene_frames = o.scene_frames;
   if (o.preset != "both") options.presets = {o.preset};
   options.repeats = o.quick && !repeats_given ? 1 : o.repeats;
   options.seed = o.seed;
@@ -110,8 +117,8 @@ void write_text(const fs::path& path, const std::string& text) {
   fs::rename(temporary, path);
 }
 
-int run_suite(const SuiteCommandOptions& o, bool repeats_given) {
-  const sim::SuiteOptions options = suite_options(o, repeats_given);
+int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given) {
+  const sim::SuiteOptions options = suite_options(o, repeats_given, count_given);
   const std::vector<sim::SuiteGroup> plan = sim::make_suite_plan(options);
   fs::create_directories(o.out_dir);
   const std::string csv_path = (fs::path(o.out_dir) / "results.csv").string();
@@ -232,8 +239,15 @@ void add_suite_command(CLI::App& app, Runner& runner) {
   command->add_option("out_dir", options->out_dir, "output folder (resumed when it holds results.csv)")
       ->required();
   command->add_option("--experiment", options->experiment,
-                      "frames (Fig. 5), noise (Fig. 6), lidars (Fig. 7) or all")
-      ->check(CLI::IsMember({"frames", "noise", "lidars", "all"}));
+                      "frames (Fig. 5), noise (Fig. 6), lidars (Fig. 7), all (the three), or scenes "
+                      "(randomised rigs, scenes and lidars)")
+      ->check(CLI::IsMember({"frames", "noise", "lidars", "all", "scenes"}));
+  command->add_option("--count", options->scene_count, "scenes of --experiment scenes (--quick: 3)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  command->add_option("--scene-frames", options->scene_frames, "frames per random scene")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
   command->add_option("--repeats", options->repeats, "repetitions per cell, independent seeds")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
@@ -243,7 +257,7 @@ void add_suite_command(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember({"default", "paper", "both"}))
       ->capture_default_str();
   command->add_flag("--quick", options->quick,
-                    "CI smoke test: settings 1, 3, 8 x VLP-16 x K=1 x 10 frames, 1 repetition");
+                    "CI smoke test: settings 1, 3, 8 x VLP-16 x K=1 x 10 frames, 1 repetition, and 3 random scenes");
   command->add_option("--seed", options->seed, "base seed; every cell's seed derives from it")
       ->capture_default_str();
   command->add_option("--thresholds", options->thresholds,
@@ -252,7 +266,8 @@ void add_suite_command(CLI::App& app, Runner& runner) {
   command->add_flag("--no-plots", options->no_plots, "do not run scripts/plot_suite.py");
   command->callback([&runner, options, command] {
     const bool repeats_given = command->count("--repeats") > 0;
-    runner = [options, repeats_given] { return run_suite(*options, repeats_given); };
+    const bool count_given = command->count("--count") > 0;
+    runner = [options, repeats_given, count_given] { return run_suite(*options, repeats_given, count_given); };
   });
 }
 
