@@ -1,5 +1,6 @@
 // End to end on the simulated suite: each of the paper's nine settings with a
-// VLP-16 at noise K = 1, both presets, accuracy checked against ground truth.
+// VLP-16 at noise K = 1, both presets, accuracy checked against ground truth,
+// and the scene check's verdict on them and on transforms 1 deg / 2 cm off.
 
 #include <l2s/calibrator.hpp>
 #include <l2s/metrics.hpp>
@@ -69,6 +70,21 @@ TEST_P(CalibratorEndToEnd, BothPresetsAreAccurateOnEverySetting) {
               paper_error.rotation * 180 / M_PI);
   expect_within(tuned_error, kDefaultBounds[GetParam() - 1], "default");
   expect_within(paper_error, kPaperBounds[GetParam() - 1], "paper");
+
+  // The scene check (issue 11): good results are ok ...
+  EXPECT_EQ(tuned_result.quality.verdict, l2s::CalibrationCheck::Verdict::Ok) << describe(tuned_result.quality);
+  if (paper_error.translation <= 0.02 && paper_error.rotation <= 0.5 * M_PI / 180) {
+    EXPECT_EQ(paper_result.quality.verdict, l2s::CalibrationCheck::Verdict::Ok) << describe(paper_result.quality);
+  }
+  // ... and a transform 1 deg (about each camera axis) and 2 cm off is reported off.
+  const l2s::CalibrationCheck check(simulator.cameras(), config.target, tuned.params().check);
+  for (int axis = 0; axis < 3; ++axis) {
+    Eigen::Isometry3d wrong = truth;
+    wrong.linear() = truth.linear() * Eigen::AngleAxisd(M_PI / 180, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+    wrong.translation() += 0.02 * (truth.linear() * Eigen::Vector3d::Unit((axis + 2) % 3));
+    const auto report = check.check(tuned.check_frames(), wrong);
+    EXPECT_NE(report.verdict, l2s::CalibrationCheck::Verdict::Ok) << "axis " << axis << "\n" << describe(report);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(PaperSettings, CalibratorEndToEnd, ::testing::Range(1, 10),

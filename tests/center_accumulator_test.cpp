@@ -95,6 +95,60 @@ TEST(CenterAccumulator, ResetForgetsFramesAndEmptyFails) {
   EXPECT_FALSE(result.reason.empty());
 }
 
+// A sensor rolled near 90 deg labels by an "up" that flips between frames:
+// each frame's labels are turned to agree with the majority's.
+TEST(CenterAccumulator, AlignsLabelsTurnedBetweenFrames) {
+  const auto turns = quarter_turns();
+  ASSERT_EQ(turns.size(), 4u);
+  const HolePermutation half = turns[2].permutation;
+  ASSERT_EQ(turns[2].degrees, 180);
+  std::mt19937 rng(3);
+  CenterAccumulator accumulator;
+  // The first frame is an outlier (1 m off): the reference must not be it.
+  HoleCenters first = noisy(rng, 0.002);
+  for (auto& p : first) p.x() += 1.0;
+  accumulator.add(first);
+  for (int frame = 0; frame < 12; ++frame) {
+    const HoleCenters c = noisy(rng, 0.002);
+    accumulator.add(frame % 3 == 1 ? relabel(c, half) : c);
+  }
+  const CenterAccumulator::Result result = accumulator.estimate();
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.relabelled_frames, 4);
+  for (int h = 0; h < 4; ++h) EXPECT_LT((result.centers[h] - truth()[h]).norm(), 0.003) << "hole " << h;
+
+  CenterAccumulator::Params paper;
+  paper.align_labels = false;
+  CenterAccumulator unaligned(paper);
+  for (int frame = 0; frame < 12; ++frame) {
+    const HoleCenters c = noisy(rng, 0.002);
+    unaligned.add(frame % 2 ? relabel(c, half) : c);
+  }
+  EXPECT_EQ(unaligned.estimate().relabelled_frames, 0);
+}
+
+// On a square pattern any quarter turn maps the holes onto themselves.
+TEST(CenterAccumulator, AlignsQuarterTurnsOfASquarePattern) {
+  Target square = Target::paper2017();
+  ASSERT_EQ(hole_symmetries(square).size(), 4u);
+  ASSERT_EQ(hole_symmetries(Target{}).size(), 2u);
+  HoleCenters base;
+  for (int h = 0; h < 4; ++h) base[h] = Eigen::Vector3d(square.hole_centers()[h].x(), -square.hole_centers()[h].y(), 3.0);
+  CenterAccumulator accumulator;
+  std::mt19937 rng(8);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  const auto turns = quarter_turns();
+  for (int frame = 0; frame < 16; ++frame) {
+    HoleCenters c = base;
+    for (auto& p : c) p += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    accumulator.add(relabel(c, turns[frame % 4].permutation));
+  }
+  const CenterAccumulator::Result result = accumulator.estimate();
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.relabelled_frames, 12);
+  for (int h = 0; h < 4; ++h) EXPECT_LT((result.centers[h] - base[h]).norm(), 0.003) << "hole " << h;
+}
+
 TEST(CenterAccumulator, RejectsInvalidParams) {
   CenterAccumulator::Params params;
   params.cluster_tolerance = -1.0;

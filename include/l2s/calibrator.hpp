@@ -12,6 +12,7 @@
 
 #include <l2s/board_pose_refiner.hpp>
 #include <l2s/board_verifier.hpp>
+#include <l2s/calibration_check.hpp>
 #include <l2s/camera.hpp>
 #include <l2s/center_accumulator.hpp>
 #include <l2s/circle_finder.hpp>
@@ -23,6 +24,7 @@
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
 #include <l2s/registrar.hpp>
+#include <l2s/scene_observer.hpp>
 #include <l2s/stereo_board_locator.hpp>
 #include <l2s/stereo_matcher.hpp>
 #include <l2s/target.hpp>
@@ -49,6 +51,10 @@ struct BranchReport {
   int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
   double milliseconds = 0.0;      ///< [ms] wall time of the branch
+  /// What the calibration check needs of the pair: set by
+  /// Calibrator::camera_branch() (so add(lidar, camera) can check), kept by
+  /// add() only for the frames it checks.
+  std::shared_ptr<const CameraObservation> observation;
 };
 
 /// Diagnostics of one frame: both branches.
@@ -90,6 +96,11 @@ class L2S_EXPORT Calibrator {
     Registrar::Params registrar;
     int min_frames = 1;  ///< fewest frames with centres on each side for a result, >= 1
     bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
+    // The scene-level check of the result (calibration_check.hpp).
+    bool check_result = true;  ///< result() checks the transform against the scene and fills Result::quality
+    int check_frames = 8;      ///< frames kept for the check, evenly spread over the frames used (between this and twice this are held), >= 1
+    SceneObserver::Params observer;   ///< what is kept of each checked frame
+    CalibrationCheck::Params check;   ///< scoring and verdict thresholds
 
     /// "default" (the most accurate) or "paper" (the 2017 method's values);
     /// throws ParamError for any other name.
@@ -111,6 +122,15 @@ class L2S_EXPORT Calibrator {
     std::vector<FrameReport> frames;             ///< per-frame diagnostics, in order
     double lidar_ms = 0.0;   ///< [ms] total lidar branch time
     double camera_ms = 0.0;  ///< [ms] total camera branch time
+    /// The scene-level check of T_lidar_camera (params.check_result): verdict
+    /// ok / suspect / failed with reasons. Failed when the transform was not found.
+    CalibrationCheck::Report quality;
+    bool checked = false;    ///< quality holds a check (check_result and a transform found)
+    /// [deg] The camera's hole labels were turned by this before the fit,
+    /// because the scene supports that fit clearly better than the labels as
+    /// the sensors gave them (a rig rolled against the lidar); 0: as given.
+    int labels_turned = 0;
+    std::vector<std::string> notes;  ///< what the calibrator decided on its own (e.g. turned labels), in words
   };
 
   /// Throws ParamError naming the field for invalid params, target or
@@ -145,8 +165,16 @@ class L2S_EXPORT Calibrator {
   /// lidar branch runs here. The frame's milliseconds include the camera's.
   FrameReport add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id = "");
 
-  /// Registration of everything accumulated so far.
+  /// Registration of everything accumulated so far, checked against the
+  /// scene (params.check_result). When the scene clearly supports the fit
+  /// with the camera's labels turned by a symmetry of the target, that fit
+  /// is returned and Result::labels_turned says so; when it cannot tell, the
+  /// verdict is failed ("ambiguous").
   Result result() const;
+
+  /// The frames kept for the check (CheckFrame, evenly spread over the used
+  /// frames), to check any other transform with CalibrationCheck.
+  const std::vector<CheckFrame>& check_frames() const;
 
   /// Forgets every frame.
   void reset();

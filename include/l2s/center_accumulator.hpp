@@ -1,9 +1,12 @@
 #pragma once
 // Accumulates the four hole centres over N frames, clusters them and returns
-// one centroid per hole (paper Sec. III-C, last paragraph).
+// one centroid per hole (paper Sec. III-C, last paragraph). Each frame's labels
+// are first turned to agree with the other frames' (hole_symmetry.hpp): a
+// sensor rolled near 90 deg labels by an "up" that flips between frames.
 
 #include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
+#include <l2s/hole_symmetry.hpp>
 
 #include <array>
 #include <string>
@@ -25,6 +28,10 @@ class L2S_EXPORT CenterAccumulator {
     double max_cluster_fraction = 1.0; ///< and <= this fraction (more means a hole was counted twice), >= min
     int min_frames = 1;                ///< estimate() fails with fewer frames added, >= 1
     Estimator estimator = Estimator::GeometricMedian;  ///< Mean reproduces the paper exactly
+    /// Relabel each frame by the quarter turn of the pattern that brings its
+    /// centres nearest to a reference frame (the one most others agree with),
+    /// so labels are consistent over frames on any mounting (false: the paper).
+    bool align_labels = true;
 
     /// Throws ParamError naming the first invalid field.
     void validate() const;
@@ -37,6 +44,7 @@ class L2S_EXPORT CenterAccumulator {
     std::array<int, 4> counts{};    ///< centres in each hole's chosen cluster
     std::array<double, 4> spread{}; ///< [m] rms distance of the cluster's centres to its estimate
     int frames = 0;                 ///< frames added
+    int relabelled_frames = 0;      ///< frames whose labels align_labels turned
   };
 
   // `Stage(Params = {})` does not compile with GCC while Params has default
@@ -48,16 +56,18 @@ class L2S_EXPORT CenterAccumulator {
 
   /// Adds the four labelled centres of one frame; non-finite centres are skipped.
   void add(const HoleCenters& centers);
+  /// The labels each frame ends up with: the quarter turn applied to frame i
+  /// (its index among add() calls) before clustering, identity without align_labels.
+  std::vector<HoleSymmetry> frame_turns() const;
   /// Clusters what was added so far; never throws on bad data.
   Result estimate() const;
   /// Forgets every frame.
   void reset();
-  int frames() const { return frames_; }
+  int frames() const { return static_cast<int>(frames_.size()); }
 
  private:
   Params params_;
-  int frames_ = 0;
-  std::array<std::vector<Eigen::Vector3d>, 4> centers_;
+  std::vector<HoleCenters> frames_;  ///< as added, NaN where a centre was not finite
 };
 
 /// "TL", "TR", "BL", "BR".

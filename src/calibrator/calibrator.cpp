@@ -1,8 +1,13 @@
 #include <l2s/calibrator.hpp>
 
 #include "calibrator/branches.hpp"
+#include "calibrator/check_keeper.hpp"
+#include "calibrator/result_check.hpp"
+#include "detail/board_frame.hpp"
 #include "detail/input_checks.hpp"
+#include "plane/plane_fit.hpp"
 
+#include <l2s/check_frames.hpp>
 #include <l2s/error.hpp>
 
 #include <chrono>
@@ -25,6 +30,16 @@ BranchReport timed(Branch&& branch) {
   return report;
 }
 
+/// The camera's board pose from its four centres alone (the plane through
+/// them), for frames whose camera branch ran without a trace.
+CameraObservation observation_from_centers(const HoleCenters& centers) {
+  CameraObservation out;
+  const std::vector<Eigen::Vector3d> points(centers.begin(), centers.end());
+  const Plane plane = detail::fit_plane(points, {0, 1, 2, 3});
+  out.T_camera_board = detail::board_pose_from_centers(centers, plane);
+  return out;
+}
+
 }  // namespace
 
 struct Calibrator::Impl {
@@ -35,13 +50,17 @@ struct Calibrator::Impl {
   CenterAccumulator lidar_centers;
   CenterAccumulator camera_centers;
   std::vector<FrameReport> frames;
+  SceneObserver observer;
+  detail::CheckFrameKeeper check_frames;
   std::vector<LidarCloud> ring_free_window;  // ring-free sweeps waiting for a detection (pass-through applied)
 
   // The lidar branch of one sweep: at once for a ring lidar; for a ring-free
   // one, when ring_free_frames sweeps of the static board are together.
-  BranchReport lidar_branch(const LidarCloud& sweep) {
+  // `trace` receives the stages of the detection, when one ran (for a
+  // ring-free lidar: of the accumulated window).
+  BranchReport lidar_branch(const LidarCloud& sweep, LidarInspection* trace) {
     if (!detail::is_ring_free(sweep))
-      return timed([&] { return detail::run_lidar_branch(sweep, target, params); });
+      return timed([&] { return detail::run_lidar_branch(sweep, target, params, trace); });
     const auto start = std::chrono::steady_clock::now();
     ring_free_window.push_back(detail::accumulate_ring_free({&sweep}, params));
     BranchReport report;
@@ -53,7 +72,7 @@ struct Calibrator::Impl {
     } else {
       std::vector<const LidarCloud*> window;
       for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
-      report = detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
+      report = detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params, trace);
       ring_free_window.clear();
     }
     report.milliseconds = milliseconds_since(start);
@@ -70,13 +89,76 @@ struct Calibrator::Impl {
     return detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
   }
 
-  // Names the frame, accumulates what its branches found, keeps its report.
-  FrameReport record(FrameReport report, const std::string& id) {
+  // Names the frame, accumulates what its branches found, keeps its report,
+  // and (for the frames the check keeps) what the check needs of it:
+  // `observe` makes that, given the frame's name.
+  template <class Observe>
+  FrameReport record(FrameReport report, const std::string& id, Observe&& observe) {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
     if (report.lidar.found) lidar_centers.add(report.lidar.centers);
     if (report.camera.found) camera_centers.add(report.camera.centers);
+    if (params.check_result && report.used()) {
+      if (check_frames.wants_next())
+        check_frames.keep(observe(report.id));
+      else
+        check_frames.skip();
+    }
+    report.camera.observation.reset();  // held by the kept CheckFrame, if at all
     frames.push_back(report);
     return report;
+  }
+
+  // Clusters the centres and registers them: the result before its check.
+  Result registered() const {
+    Result result;
+    result.frames = frames;
+    result.frames_added = static_cast<int>(frames.size());
+    for (const auto& frame : frames) {
+      result.lidar_frames += frame.lidar.found ? 1 : 0;
+      result.camera_frames += frame.camera.found ? 1 : 0;
+      result.lidar_ms += frame.lidar.milliseconds;
+      result.camera_ms += frame.camera.milliseconds;
+    }
+    if (result.frames_added == 0) {
+      result.reason = "no frames added";
+      return result;
+    }
+    CenterAccumulator lidar_accumulated = lidar_centers;
+    if (const auto partial = partial_ring_free_window(); partial && partial->found) {
+      lidar_accumulated.add(partial->centers);
+      ++result.lidar_frames;
+    }
+    const int needed = params.min_frames;
+    if (result.lidar_frames < needed || result.camera_frames < needed) {
+      std::ostringstream reason;
+      if (result.lidar_frames == 0 && result.camera_frames == 0)
+        reason << "the board was never found in " << result.frames_added << " frames";
+      else
+        reason << "too few frames gave four centres: lidar " << result.lidar_frames << ", camera "
+               << result.camera_frames << " of " << result.frames_added << " (need " << needed << ")";
+      result.reason = reason.str();
+      return result;
+    }
+
+    result.lidar_centroids = lidar_accumulated.estimate();
+    result.camera_centroids = camera_centers.estimate();
+    if (!result.lidar_centroids.found) {
+      result.reason = "lidar centres do not cluster: " + result.lidar_centroids.reason;
+      return result;
+    }
+    if (!result.camera_centroids.found) {
+      result.reason = "camera centres do not cluster: " + result.camera_centroids.reason;
+      return result;
+    }
+    result.registration =
+        Registrar(params.registrar).estimate(result.lidar_centroids.centers, result.camera_centroids.centers);
+    if (!result.registration.found) {
+      result.reason = "registration failed: " + result.registration.reason;
+      return result;
+    }
+    result.T_lidar_camera = result.registration.T_lidar_camera;
+    result.found = true;
+    return result;
   }
 
   Impl(StereoCamera c, Target t, Params p)
@@ -85,7 +167,9 @@ struct Calibrator::Impl {
         target(t),
         params(std::move(p)),
         lidar_centers(params.accumulator),
-        camera_centers(params.accumulator) {}
+        camera_centers(params.accumulator),
+        observer(params.observer),
+        check_frames(params.check_frames) {}
 };
 
 Calibrator::Calibrator(StereoCamera cameras, Target target, Params params) {
@@ -106,10 +190,14 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   // Here, not in the camera branch: an exception must leave before the lidar
   // branch runs and from the caller's thread.
   detail::check_stereo_images(left, right, impl.cameras);
-  const auto lidar_branch = [&] { return impl.lidar_branch(lidar); };
+  // The traces cost nothing extra (the branches keep their stages in them
+  // either way); the check observes the frames it keeps from them.
+  LidarInspection lidar_trace;
+  CameraInspection camera_trace;
+  const auto lidar_branch = [&] { return impl.lidar_branch(lidar, &lidar_trace); };
   const auto camera_branch = [&] {
     return timed([&] {
-      return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params);
+      return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &camera_trace);
     });
   };
 
@@ -123,74 +211,54 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
     report.lidar = lidar_branch();
     report.camera = camera_branch();
   }
-  report.milliseconds = milliseconds_since(start);
-  return impl_->record(std::move(report), id);
+  const auto observe = [&](const std::string& name) {
+    CheckFrame frame;
+    frame.id = name;
+    frame.lidar = observe_lidar(lidar, lidar_trace, true, impl.observer);
+    frame.camera = observe_camera(left, camera_trace, true, impl.cameras, impl.observer);
+    return frame;
+  };
+  FrameReport recorded = impl_->record(std::move(report), id, observe);
+  recorded.milliseconds = impl_->frames.back().milliseconds = milliseconds_since(start);
+  return recorded;
 }
 
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
   const Impl& impl = *impl_;
   detail::check_stereo_images(left, right, impl.cameras);
-  return timed([&] { return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params); });
+  CameraInspection trace;
+  BranchReport report = timed([&] {
+    return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &trace);
+  });
+  if (impl.params.check_result && report.found)
+    report.observation = std::make_shared<const CameraObservation>(
+        observe_camera(left, trace, true, impl.cameras, impl.observer));
+  return report;
 }
 
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
-  report.lidar = impl_->lidar_branch(lidar);
+  LidarInspection lidar_trace;
+  report.lidar = impl_->lidar_branch(lidar, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
-  return impl_->record(std::move(report), id);
+  const auto observe = [&](const std::string& name) {
+    CheckFrame frame;
+    frame.id = name;
+    frame.lidar = observe_lidar(lidar, lidar_trace, true, impl_->observer);
+    frame.camera = camera.observation ? *camera.observation : observation_from_centers(camera.centers);
+    return frame;
+  };
+  return impl_->record(std::move(report), id, observe);
 }
 
 Calibrator::Result Calibrator::result() const {
   const Impl& impl = *impl_;
-  Result result;
-  result.frames = impl.frames;
-  result.frames_added = static_cast<int>(impl.frames.size());
-  for (const auto& frame : impl.frames) {
-    result.lidar_frames += frame.lidar.found ? 1 : 0;
-    result.camera_frames += frame.camera.found ? 1 : 0;
-    result.lidar_ms += frame.lidar.milliseconds;
-    result.camera_ms += frame.camera.milliseconds;
-  }
-  if (result.frames_added == 0) {
-    result.reason = "no frames added";
-    return result;
-  }
-  CenterAccumulator lidar_centers = impl.lidar_centers;
-  if (const auto partial = impl.partial_ring_free_window(); partial && partial->found) {
-    lidar_centers.add(partial->centers);
-    ++result.lidar_frames;
-  }
-  const int needed = impl.params.min_frames;
-  if (result.lidar_frames < needed || result.camera_frames < needed) {
-    std::ostringstream reason;
-    if (result.lidar_frames == 0 && result.camera_frames == 0)
-      reason << "the board was never found in " << result.frames_added << " frames";
-    else
-      reason << "too few frames gave four centres: lidar " << result.lidar_frames << ", camera "
-             << result.camera_frames << " of " << result.frames_added << " (need " << needed << ")";
-    result.reason = reason.str();
-    return result;
-  }
-
-  result.lidar_centroids = lidar_centers.estimate();
-  result.camera_centroids = impl.camera_centers.estimate();
-  if (!result.lidar_centroids.found) {
-    result.reason = "lidar centres do not cluster: " + result.lidar_centroids.reason;
-    return result;
-  }
-  if (!result.camera_centroids.found) {
-    result.reason = "camera centres do not cluster: " + result.camera_centroids.reason;
-    return result;
-  }
-  result.registration =
-      Registrar(impl.params.registrar).estimate(result.lidar_centroids.centers, result.camera_centroids.centers);
-  if (!result.registration.found) {
-    result.reason = "registration failed: " + result.registration.reason;
-    return result;
-  }
-  result.T_lidar_camera = result.registration.T_lidar_camera;
-  result.found = true;
+  Result result = impl.registered();
+  if (!result.found)
+    result.quality.reasons = {"no transform to check: " + result.reason};
+  else if (impl.params.check_result)
+    detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params);
   return result;
 }
 
@@ -198,8 +266,11 @@ void Calibrator::reset() {
   impl_->lidar_centers.reset();
   impl_->camera_centers.reset();
   impl_->frames.clear();
+  impl_->check_frames.reset();
   impl_->ring_free_window.clear();
 }
+
+const std::vector<CheckFrame>& Calibrator::check_frames() const { return impl_->check_frames.frames(); }
 
 const Calibrator::Params& Calibrator::params() const { return impl_->params; }
 const StereoCamera& Calibrator::cameras() const { return impl_->cameras; }

@@ -82,6 +82,9 @@ void Calibrator::Params::validate() const {
   validate_field("registrar", [&] { registrar.validate(); });
   if (min_frames < 1) throw ParamError("min_frames", "must be >= 1");
   if (ring_free_frames < 1) throw ParamError("ring_free_frames", "must be >= 1");
+  if (check_frames < 1) throw ParamError("check_frames", "must be >= 1");
+  validate_field("observer", [&] { observer.validate(); });
+  validate_field("check", [&] { check.validate(); });
 }
 
 }  // namespace l2s

@@ -163,12 +163,63 @@ void visit(V& v, CenterAccumulator::Params& p) {
   v.field("max_cluster_fraction", p.max_cluster_fraction);
   v.field("min_frames", p.min_frames);
   v.choice("estimator", p.estimator, {{E::Mean, "mean"}, {E::GeometricMedian, "geometric_median"}});
+  v.field("align_labels", p.align_labels);
 }
 
 template <class V>
 void visit(V& v, Registrar::Params& p) {
   v.field("min_extent", p.min_extent);
   v.field("min_planarity", p.min_planarity);
+}
+
+template <class V>
+void visit(V& v, SceneObserver::Params& p) {
+  v.field("min_jump", p.min_jump);
+  v.field("relative_jump", p.relative_jump);
+  v.field("gap_factor", p.gap_factor);
+  v.field("min_range", p.min_range);
+  v.field("grid_step", p.grid_step);
+  v.field("board_band", p.board_band);
+  v.field("max_edges", p.max_edges);
+  v.field("max_board_points", p.max_board_points);
+  v.field("max_scene_points", p.max_scene_points);
+  v.field("canny_low", p.canny_low);
+  v.field("canny_high", p.canny_high);
+  v.field("depth_cell", p.depth_cell);
+  v.field("depth_jump_margin", p.depth_jump_margin);
+}
+
+template <class V>
+void visit(V& v, CalibrationCheck::Params& p) {
+  v.field("edge_sigma_px", p.edge_sigma_px);
+  v.field("max_edge_frames", p.max_edge_frames);
+  v.field("scan_range_deg", p.scan_range_deg);
+  v.field("depth_tolerance", p.depth_tolerance);
+  v.field("outline_band", p.outline_band);
+  v.field("suspect_misalignment_deg", p.suspect_misalignment_deg);
+  v.field("failed_misalignment_deg", p.failed_misalignment_deg);
+  v.field("suspect_roll_deg", p.suspect_roll_deg);
+  v.field("failed_roll_deg", p.failed_roll_deg);
+  v.field("suspect_outline_deg", p.suspect_outline_deg);
+  v.field("failed_outline_deg", p.failed_outline_deg);
+  v.field("suspect_plane_offset", p.suspect_plane_offset);
+  v.field("failed_plane_offset", p.failed_plane_offset);
+  v.field("suspect_plane_tilt_deg", p.suspect_plane_tilt_deg);
+  v.field("failed_plane_tilt_deg", p.failed_plane_tilt_deg);
+  v.field("suspect_center_offset", p.suspect_center_offset);
+  v.field("failed_center_offset", p.failed_center_offset);
+  v.field("suspect_outside_fraction", p.suspect_outside_fraction);
+  v.field("failed_outside_fraction", p.failed_outside_fraction);
+  v.field("suspect_alignment_gain", p.suspect_alignment_gain);
+  v.field("failed_alignment_gain", p.failed_alignment_gain);
+  v.field("suspect_depth_tilt_deg", p.suspect_depth_tilt_deg);
+  v.field("failed_depth_tilt_deg", p.failed_depth_tilt_deg);
+  v.field("suspect_depth_bias", p.suspect_depth_bias);
+  v.field("failed_depth_bias", p.failed_depth_bias);
+  v.field("min_edge_points", p.min_edge_points);
+  v.field("min_scene_edge_points", p.min_scene_edge_points);
+  v.field("min_prominence", p.min_prominence);
+  v.field("hypothesis_margin", p.hypothesis_margin);
 }
 
 template <class V>
@@ -192,6 +243,10 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("registrar", [&](V& s) { visit(s, p.registrar); });
   v.field("min_frames", p.min_frames);
   v.field("parallel_branches", p.parallel_branches);
+  v.field("check_result", p.check_result);
+  v.field("check_frames", p.check_frames);
+  v.section("observer", [&](V& s) { visit(s, p.observer); });
+  v.section("check", [&](V& s) { visit(s, p.check); });
 }
 
 }  // namespace l2s::detail

@@ -76,6 +76,74 @@ void emit_branch(YAML::Emitter& out, const std::string& key, const BranchReport&
   out << YAML::EndMap;
 }
 
+void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
+  const auto number = [&](const char* key, double value) {
+    if (std::isfinite(value)) out << YAML::Key << key << YAML::Value << format_number(value);
+  };
+  number("support", s.support);
+  number("edge_score", s.edge_score);
+  out << YAML::Key << "edge_points" << YAML::Value << s.edge_points;
+  number("scene_edge_score", s.scene_edge_score);
+  out << YAML::Key << "scene_edge_points" << YAML::Value << s.scene_edge_points;
+  number("depth_agreement", s.depth_agreement);
+  out << YAML::Key << "depth_points" << YAML::Value << s.depth_points;
+  number("depth_bias", s.depth_bias);
+  number("depth_tilt_deg", s.depth_tilt * 180.0 / M_PI);
+  number("plane_offset_m", s.plane_offset);
+  number("plane_spread_m", s.plane_spread);
+  number("plane_tilt_deg", s.plane_tilt * 180.0 / M_PI);
+  number("outline_px", s.outline_px);
+  number("outside_fraction", s.outside_fraction);
+  number("center_offset_m", s.center_offset);
+}
+
+// The calibration check (issue 11): verdict first, so a reader sees it at once.
+void emit_quality(YAML::Emitter& out, const Calibrator::Result& result) {
+  const CalibrationCheck::Report& q = result.quality;
+  out << YAML::Key << "quality" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "verdict" << YAML::Value << verdict_name(q.verdict);
+  out << YAML::Key << "reasons" << YAML::Value << YAML::BeginSeq;
+  for (const auto& reason : q.reasons) out << reason;
+  out << YAML::EndSeq;
+  out << YAML::Key << "labels_turned_deg" << YAML::Value << result.labels_turned;
+  out << YAML::Key << "notes" << YAML::Value << YAML::BeginSeq;
+  for (const auto& note : result.notes) out << note;
+  out << YAML::EndSeq;
+  out << YAML::Key << "misalignment_px" << YAML::Value << format_number(q.misalignment_px);
+  out << YAML::Key << "misalignment_deg" << YAML::Value << format_number(q.misalignment * 180.0 / M_PI);
+  out << YAML::Key << "alignment_gain" << YAML::Value << format_number(q.alignment_gain);
+  out << YAML::Key << "edge_median_depth_m" << YAML::Value << format_number(q.median_depth);
+  out << YAML::Key << "scores" << YAML::Value << YAML::BeginMap;
+  emit_scores(out, q.scores);
+  out << YAML::EndMap;
+  // Per degree of freedom of the camera frame: where the edges align best
+  // (offset) and how sharply (half width at half height).
+  out << YAML::Key << "peaks" << YAML::Value << YAML::BeginMap;
+  for (const auto& peak : q.peaks) {
+    const double unit = peak.rotation ? 180.0 / M_PI : 1.0;
+    out << YAML::Key << peak.name + (peak.rotation ? "_deg" : "_m") << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "offset" << YAML::Value << format_number(peak.offset * unit);
+    out << YAML::Key << "width" << YAML::Value << format_number(peak.width * unit);
+    out << YAML::Key << "prominence" << YAML::Value << format_number(peak.prominence);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+  out << YAML::Key << "alternatives" << YAML::Value << YAML::BeginSeq;
+  for (const auto& alternative : q.alternatives) {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << alternative.name;
+    emit_scores(out, alternative.scores);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  out << YAML::Key << "ambiguous" << YAML::Value << q.ambiguous;
+  out << YAML::Key << "frames" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "board" << YAML::Value << q.board_frames;
+  out << YAML::Key << "edges" << YAML::Value << q.edge_frames;
+  out << YAML::Key << "depth" << YAML::Value << q.depth_frames << YAML::EndMap;
+  out << YAML::Key << "ms" << YAML::Value << format_number(std::round(q.milliseconds * 10) / 10);
+  out << YAML::EndMap;
+}
+
 }  // namespace
 
 void write_calibration_result(const std::string& path, const Calibrator::Result& result,
@@ -118,6 +186,7 @@ void write_calibration_result(const std::string& path, const Calibrator::Result&
   emit_centers(out, "lidar_centroids", result.lidar_centroids.centers);
   emit_centers(out, "camera_centroids", result.camera_centroids.centers);
   out << YAML::EndMap;
+  if (result.checked) emit_quality(out, result);
 
   out << YAML::Key << "frames" << YAML::Value << YAML::BeginSeq;
   for (const auto& frame : result.frames) {

@@ -11,6 +11,7 @@
 #include <l2s/error.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -58,6 +59,41 @@ Eigen::Vector3d geometric_median(const std::vector<Eigen::Vector3d>& pts) {
   return m;
 }
 
+/// [m] Mean distance between the holes finite in both, or +inf with fewer than two.
+double label_distance(const HoleCenters& a, const HoleCenters& b) {
+  double sum = 0.0;
+  int n = 0;
+  for (int h = 0; h < 4; ++h)
+    if (a[h].allFinite() && b[h].allFinite()) sum += (a[h] - b[h]).norm(), ++n;
+  return n >= 2 ? sum / n : std::numeric_limits<double>::infinity();
+}
+
+/// The quarter turn of `frame` nearest to `reference`, and that distance.
+std::pair<HoleSymmetry, double> best_turn(const HoleCenters& frame, const HoleCenters& reference,
+                                          const std::vector<HoleSymmetry>& turns) {
+  std::pair<HoleSymmetry, double> best{turns.front(), std::numeric_limits<double>::infinity()};
+  for (const HoleSymmetry& turn : turns) {
+    const double d = label_distance(relabel(frame, turn.permutation), reference);
+    if (d < best.second) best = {turn, d};
+  }
+  return best;
+}
+
+/// The frame most other frames agree with (within `tolerance` under some
+/// turn); ties go to the earliest. At most 64 evenly spread candidates.
+std::size_t reference_frame(const std::vector<HoleCenters>& frames, double tolerance,
+                            const std::vector<HoleSymmetry>& turns) {
+  const std::size_t step = std::max<std::size_t>(1, frames.size() / 64);
+  std::size_t best = 0;
+  int best_support = -1;
+  for (std::size_t i = 0; i < frames.size(); i += step) {
+    int support = 0;
+    for (const HoleCenters& other : frames) support += best_turn(other, frames[i], turns).second <= tolerance;
+    if (support > best_support) best = i, best_support = support;
+  }
+  return best;
+}
+
 }  // namespace
 
 const char* hole_name(Hole hole) {
@@ -82,41 +118,58 @@ void CenterAccumulator::Params::validate() const {
 CenterAccumulator::CenterAccumulator(Params params) : params_(params) { params_.validate(); }
 
 void CenterAccumulator::add(const HoleCenters& centers) {
-  ++frames_;
-  for (int h = 0; h < 4; ++h)
-    if (centers[h].allFinite()) centers_[h].push_back(centers[h]);
+  HoleCenters kept = centers;
+  for (auto& c : kept)
+    if (!c.allFinite()) c.setConstant(std::numeric_limits<double>::quiet_NaN());
+  frames_.push_back(kept);
 }
 
-void CenterAccumulator::reset() {
-  frames_ = 0;
-  for (auto& c : centers_) c.clear();
+void CenterAccumulator::reset() { frames_.clear(); }
+
+std::vector<HoleSymmetry> CenterAccumulator::frame_turns() const {
+  const std::vector<HoleSymmetry> turns = quarter_turns();
+  std::vector<HoleSymmetry> applied(frames_.size(), turns.front());
+  if (!params_.align_labels || frames_.empty()) return applied;
+  const HoleCenters& reference =
+      frames_[reference_frame(frames_, 2.0 * params_.cluster_tolerance, turns)];
+  for (std::size_t i = 0; i < frames_.size(); ++i) applied[i] = best_turn(frames_[i], reference, turns).first;
+  return applied;
 }
 
 CenterAccumulator::Result CenterAccumulator::estimate() const {
   Result result;
-  result.frames = frames_;
-  if (frames_ < params_.min_frames) {
+  const int frames = result.frames = static_cast<int>(frames_.size());
+  if (frames < params_.min_frames) {
     std::ostringstream reason;
-    reason << "only " << frames_ << " frames added, need " << params_.min_frames;
+    reason << "only " << frames << " frames added, need " << params_.min_frames;
     result.reason = reason.str();
     return result;
   }
-  const int min_size = std::max(1, static_cast<int>(std::ceil(params_.min_cluster_fraction * frames_ - 1e-9)));
-  const int max_size = static_cast<int>(std::floor(params_.max_cluster_fraction * frames_ + 1e-9));
+  // Each hole's centres, every frame turned to the common labels.
+  std::array<std::vector<Eigen::Vector3d>, 4> centers;
+  const std::vector<HoleSymmetry> turns = frame_turns();
+  for (std::size_t i = 0; i < frames_.size(); ++i) {
+    result.relabelled_frames += turns[i].degrees != 0;
+    const HoleCenters turned = relabel(frames_[i], turns[i].permutation);
+    for (int h = 0; h < 4; ++h)
+      if (turned[h].allFinite()) centers[h].push_back(turned[h]);
+  }
+  const int min_size = std::max(1, static_cast<int>(std::ceil(params_.min_cluster_fraction * frames - 1e-9)));
+  const int max_size = static_cast<int>(std::floor(params_.max_cluster_fraction * frames + 1e-9));
   std::ostringstream reasons;
   for (int h = 0; h < 4; ++h) {
     const char* name = hole_name(static_cast<Hole>(h));
-    const std::vector<int> members = largest_cluster(centers_[h], params_.cluster_tolerance);
+    const std::vector<int> members = largest_cluster(centers[h], params_.cluster_tolerance);
     const int size = static_cast<int>(members.size());
     result.counts[h] = size;
     if (size < min_size || size > max_size) {
       if (reasons.tellp() > 0) reasons << "; ";
-      reasons << "hole " << name << ": largest cluster has " << size << " of " << frames_
+      reasons << "hole " << name << ": largest cluster has " << size << " of " << frames
               << " centres (allowed " << min_size << ".." << max_size << ")";
       continue;
     }
     std::vector<Eigen::Vector3d> cluster;
-    for (int k : members) cluster.push_back(centers_[h][k]);
+    for (int k : members) cluster.push_back(centers[h][k]);
     Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
     if (params_.estimator == Estimator::Mean) {
       for (const auto& p : cluster) estimate += p;

@@ -21,7 +21,9 @@ L2S_EXPORT void write_calibrator_params(const std::string& path, const Calibrato
 
 /// Writes a calibration result atomically: T_lidar_camera (DATASET.md), its
 /// inverse, quaternion, roll/pitch/yaw, ROS static_transform_publisher
-/// arguments for both directions, centroids, residuals and per-frame diagnostics.
+/// arguments for both directions, centroids, residuals, the `quality`
+/// section of the scene check (verdict, reasons, scores, per-DoF peaks,
+/// alternatives; when result.checked) and per-frame diagnostics.
 /// Throws InputError("result", ...) for a result that is not found (nothing is
 /// written, an existing file stays), FileError when the file cannot be written.
 L2S_EXPORT void write_calibration_result(const std::string& path, const Calibrator::Result& result,

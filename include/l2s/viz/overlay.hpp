@@ -1,13 +1,16 @@
 #pragma once
-// The picture users check a calibration with: lidar points projected into the
-// left image with the estimated transform, coloured by range. Part of
-// l2scalib::viz.
+// The pictures users check a calibration with: lidar points projected into
+// the left image with the estimated transform, coloured by range; and the
+// calibration check's view, the lidar's depth edges over the image's edges.
+// Part of l2scalib::viz.
 
 #include <l2s/camera.hpp>
 #include <l2s/export.hpp>
+#include <l2s/scene_observer.hpp>
 #include <l2s/types.hpp>
 
 #include <Eigen/Geometry>
+#include <string>
 
 namespace l2s {
 
@@ -21,5 +24,16 @@ struct OverlayParams {
 /// T_lidar_camera says they project. Points behind the camera are skipped.
 L2S_VIZ_EXPORT Image render_overlay(const Image& left, const LidarCloud& sweep, const CameraInfo& camera,
                      const Eigen::Isometry3d& T_lidar_camera, const OverlayParams& params = {});
+
+/// What the calibration check compares, as a BGR picture of the (rectified)
+/// left image, dimmed: its edges as the check sees them (Canny with the
+/// observer's thresholds) in blue; the lidar returns as small dots coloured
+/// by range (`params`); the lidar's depth discontinuities projected with
+/// T_lidar_camera as larger dots, yellow on the board and magenta off it.
+/// With a right transform the yellow and magenta dots sit on blue lines;
+/// `caption` (e.g. the verdict) is written at the top left.
+L2S_VIZ_EXPORT Image render_edge_overlay(const Image& left, const StereoCamera& cameras, const LidarObservation& lidar,
+                          const Eigen::Isometry3d& T_lidar_camera, const SceneObserver& observer = SceneObserver(),
+                          const std::string& caption = "", const OverlayParams& params = {});
 
 }  // namespace l2s

@@ -1,5 +1,7 @@
 // l2s calibrate DATASET: streams a dataset folder through the Calibrator,
-// writes the result (atomically) and an overlay image, prints a short report.
+// writes the result (atomically) and an overlay image, prints a short report
+// with the verdict of the scene check. A failed check exits non-zero and
+// writes no result (unless --keep-failed); a suspect one warns loudly.
 
 #include "commands.hpp"
 #include "progress_bar.hpp"
@@ -13,6 +15,7 @@
 #include <l2s/viz/overlay.hpp>
 #include <l2s/pose.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -33,6 +36,7 @@ struct CalibrateOptions {
   std::string preset = "default";
   int frames = 0;
   bool verbose = false;
+  bool keep_failed = false;
 };
 
 void print_pose(const char* label, const Eigen::Isometry3d& T) {
@@ -50,6 +54,37 @@ void print_frame_failure(const FrameReport& frame) {
     else if (!branch->note.empty())
       std::fprintf(stderr, "  frame %s %s: note: %s\n", frame.id.c_str(), side, branch->note.c_str());
   }
+}
+
+void print_quality(const Calibrator::Result& result) {
+  const CalibrationCheck::Report& q = result.quality;
+  for (const auto& note : result.notes) std::printf("note      %s\n", note.c_str());
+  std::printf("check     %s: edges %.3f of %d on image edges, overlay %.1f px (%.2f deg) from its best; board "
+              "%+.1f mm, tilt %.2f deg (%.0f ms)\n",
+              verdict_name(q.verdict), q.scores.edge_score, q.scores.edge_points, q.misalignment_px,
+              q.misalignment * 180.0 / M_PI, q.scores.plane_offset * 1e3, q.scores.plane_tilt * 180.0 / M_PI,
+              q.milliseconds);
+  if (q.verdict == CalibrationCheck::Verdict::Suspect) {
+    std::fprintf(stderr, "\n  *** WARNING: the scene check finds this calibration SUSPECT ***\n");
+    for (const auto& reason : q.reasons) std::fprintf(stderr, "  *** %s\n", reason.c_str());
+    std::fprintf(stderr, "  *** look at the overlay before using it\n\n");
+  }
+}
+
+/// The check's picture of the last checked frame (or of `fallback` when
+/// nothing was checked).
+Image overlay_image(const io::Dataset& dataset, const Calibrator& calibrator, const Calibrator::Result& result,
+                    const io::Frame& fallback) {
+  const auto& kept = calibrator.check_frames();
+  if (kept.empty() || !result.checked)
+    return render_overlay(fallback.left, fallback.lidar, dataset.cameras().left, result.T_lidar_camera);
+  const auto& stems = dataset.stems();
+  const auto stem = std::find(stems.begin(), stems.end(), kept.back().id);
+  const io::Frame frame = stem == stems.end() ? fallback : dataset.load(static_cast<std::size_t>(stem - stems.begin()));
+  const std::string caption = std::string("check: ") + verdict_name(result.quality.verdict) + " | frame " +
+                              kept.back().id + " | yellow/magenta: lidar depth edges, blue: image edges";
+  return render_edge_overlay(frame.left, dataset.cameras(), kept.back().lidar, result.T_lidar_camera,
+                             SceneObserver(calibrator.params().observer), caption);
 }
 
 int run_calibrate(const CalibrateOptions& options) {
@@ -104,21 +139,33 @@ int run_calibrate(const CalibrateOptions& options) {
 
   const std::string output =
       options.output.empty() ? (fs::path(options.dataset) / "calibration.yaml").string() : options.output;
-  io::write_calibration_result(output, result, options.dataset,
-                               options.params_file.empty() ? options.preset : options.params_file);
   const std::string overlay = options.overlay.empty()
                                   ? (fs::path(output).replace_extension("").string() + "_overlay.png")
                                   : options.overlay;
-  io::write_png(overlay, render_overlay(last_frame.left, last_frame.lidar, dataset.cameras().left,
-                                        result.T_lidar_camera));
+  // The overlay is written either way: it is how a user sees why a check failed.
+  io::write_png(overlay, overlay_image(dataset, calibrator, result, last_frame));
+  const bool failed = result.checked && result.quality.verdict == CalibrationCheck::Verdict::Failed;
+  if (!failed || options.keep_failed)
+    io::write_calibration_result(output, result, options.dataset,
+                                 options.params_file.empty() ? options.preset : options.params_file);
 
   print_pose("estimate", result.T_lidar_camera);
   std::printf("residual  rms %.2f mm over the four hole centres\n", result.registration.rms * 1e3);
+  if (result.checked) print_quality(result);
   if (const auto truth = dataset.ground_truth()) {
     print_pose("truth", *truth);
     const PoseError error = pose_error(result.T_lidar_camera, *truth);
     std::printf("error     e_t = %.1f mm, e_r = %.3f deg\n", error.translation * 1e3,
                 error.rotation * 180.0 / M_PI);
+  }
+  if (failed) {
+    std::fprintf(stderr, "l2s: the scene check FAILED this calibration:\n");
+    for (const auto& reason : result.quality.reasons) std::fprintf(stderr, "  - %s\n", reason.c_str());
+    if (!options.keep_failed) {
+      std::fprintf(stderr, "l2s: no result written (--keep-failed writes it anyway); overlay: %s\n", overlay.c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "l2s: --keep-failed: writing it anyway\n");
   }
   std::printf("wrote     %s\n          %s\n", output.c_str(), overlay.c_str());
   return 0;
@@ -138,6 +185,8 @@ void add_calibrate_command(CLI::App& app, Runner& runner) {
       ->check(CLI::IsMember({"default", "paper"}));
   command->add_option("--frames", options->frames, "use only the first N frames")->check(CLI::PositiveNumber);
   command->add_flag("-v,--verbose", options->verbose, "print why each frame was not used");
+  command->add_flag("--keep-failed", options->keep_failed,
+                    "write the result and exit 0 even when the scene check fails it");
   command->callback([&runner, options] { runner = [options] { return run_calibrate(*options); }; });
 }
 

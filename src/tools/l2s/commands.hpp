@@ -18,5 +18,6 @@ void add_evaluate_command(CLI::App& app, Runner& runner);
 void add_simulate_command(CLI::App& app, Runner& runner);
 void add_suite_command(CLI::App& app, Runner& runner);
 void add_detect_command(CLI::App& app, Runner& runner);
+void add_check_command(CLI::App& app, Runner& runner);
 
 }  // namespace l2s::cli

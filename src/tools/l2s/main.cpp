@@ -1,6 +1,6 @@
 // l2s: lidar-stereo calibration from the command line.
 // Exit codes: 0 success, 1 bad input or failed job (one-line reason on stderr),
-// 2 bad command line.
+// 2 bad command line, 3 a transform the scene check finds suspect (l2s check).
 
 #include "commands.hpp"
 
@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   l2s::cli::add_evaluate_command(app, runner);
   l2s::cli::add_suite_command(app, runner);
   l2s::cli::add_detect_command(app, runner);
+  l2s::cli::add_check_command(app, runner);
 
   try {
     app.parse(argc, argv);

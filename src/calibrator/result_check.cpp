@@ -1,0 +1,62 @@
+// The last step of Calibrator::result(): the scene decides between the fits
+// the four centres cannot tell apart (issue 8, "any mounting"; issue 11).
+
+#include "calibrator/result_check.hpp"
+
+#include <cstdio>
+
+namespace l2s::detail {
+namespace {
+
+template <class T>
+std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation& permutation) {
+  std::array<T, 4> out;
+  for (int h = 0; h < 4; ++h) out[h] = values[permutation[h]];
+  return out;
+}
+
+/// Makes the fit with the camera centroids relabelled by `turn` the result.
+bool adopt(Calibrator::Result& result, const CalibrationCheck::Alternative& turn, double support_before,
+           const Registrar& registrar) {
+  CenterAccumulator::Result camera = result.camera_centroids;
+  camera.centers = relabel(camera.centers, turn.relabel);
+  camera.counts = permuted(camera.counts, turn.relabel);
+  camera.spread = permuted(camera.spread, turn.relabel);
+  const Registrar::Result fit = registrar.estimate(result.lidar_centroids.centers, camera.centers);
+  if (!fit.found) return false;
+  result.camera_centroids = camera;
+  result.registration = fit;
+  result.T_lidar_camera = fit.T_lidar_camera;
+  result.labels_turned = turn.degrees;
+  char note[320];
+  std::snprintf(note, sizeof note,
+                "the camera's hole labels were turned by %d deg before the fit: the scene supports that fit clearly "
+                "better (support %.2f vs %.2f); the labels as the sensors gave them disagree (a rig rolled against "
+                "the lidar, or a lidar upside down)",
+                turn.degrees, turn.scores.support, support_before);
+  result.notes.push_back(note);
+  return true;
+}
+
+}  // namespace
+
+void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& frames, const StereoCamera& cameras,
+                  const Target& target, const Calibrator::Params& params) {
+  const Registrar registrar(params.registrar);
+  const CalibrationCheck check(cameras, target, params.check);
+  const auto alternatives = [&] {
+    return relabelled_alternatives(result.lidar_centroids.centers, result.camera_centroids.centers, target,
+                                   registrar);
+  };
+  CalibrationCheck::Report report = check.check(frames, result.T_lidar_camera, alternatives());
+  if (report.preferred >= 0 &&
+      adopt(result, report.alternatives[report.preferred], report.scores.support, registrar)) {
+    const double milliseconds = report.milliseconds;
+    report = check.check(frames, result.T_lidar_camera, alternatives());
+    report.milliseconds += milliseconds;
+  }
+  result.quality = std::move(report);
+  result.checked = true;
+}
+
+}  // namespace l2s::detail

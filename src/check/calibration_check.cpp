@@ -1,0 +1,170 @@
+// The calibration check (calibration_check.hpp): scores the transform and
+// its symmetric alternatives against the whole scene, scans the edge score
+// per degree of freedom, and judges.
+
+#include <l2s/calibration_check.hpp>
+
+#include "check/left_view.hpp"
+#include "check/edge_alignment.hpp"
+#include "check/scene_scorer.hpp"
+#include "check/verdict.hpp"
+
+#include <l2s/error.hpp>
+
+#include <chrono>
+#include <cmath>
+
+namespace l2s {
+namespace {
+
+/// The edge scores of one transform, normalised by the counts the checked
+/// transform sees, so every hypothesis is measured on the same scale.
+void score_edges(const detail::EdgeSums& sums, const detail::EdgeSums& reference, CalibrationCheck::Scores& s) {
+  s.edge_points = reference.board_seen + reference.scene_seen;
+  s.scene_edge_points = reference.scene_seen;
+  s.edge_score = s.edge_points ? (sums.board + sums.scene) / s.edge_points : 0.0;
+  s.scene_edge_score = s.scene_edge_points ? sums.scene / s.scene_edge_points : 0.0;
+}
+
+/// The scores of one transform. Its support is measured at the best
+/// alignment of the edges near it, so that a hypothesis a little off (as any
+/// estimate is) is not judged by how far its overlay is off but by whether
+/// the scene can be explained by it at all.
+CalibrationCheck::Scores score(const detail::SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar,
+                               const detail::EdgeSums& reference, const detail::LeftView& view, double depth,
+                               const CalibrationCheck::Params& params) {
+  CalibrationCheck::Scores s;
+  score_edges(scorer.edges(T_camera_lidar), reference, s);
+  scorer.depth(T_camera_lidar, s);
+  scorer.board(T_camera_lidar, s);
+  CalibrationCheck::Scores best = s;
+  if (s.edge_points > 0) {
+    const Eigen::Isometry3d T_best = detail::refine_alignment(scorer, T_camera_lidar, view, depth, params);
+    score_edges(scorer.edges(T_best), reference, best);
+    scorer.depth(T_best, best);
+    scorer.board(T_best, best);
+  }
+  // Support: the sum of the evidence there is (each 0..1, higher better). A
+  // sum, not a mean, so evidence that cannot tell hypotheses apart (the
+  // board under a half turn) does not dilute the evidence that can.
+  if (best.edge_points > 0) s.support += best.edge_score;
+  if (std::isfinite(best.depth_agreement)) s.support += best.depth_agreement;
+  if (std::isfinite(best.outside_fraction)) s.support += 1.0 - best.outside_fraction;
+  return s;
+}
+
+/// Which alternative the scene prefers, and whether it cannot tell.
+void compare_hypotheses(CalibrationCheck::Report& report, double margin) {
+  double best = report.scores.support + margin;
+  for (std::size_t i = 0; i < report.alternatives.size(); ++i) {
+    const double support = report.alternatives[i].scores.support;
+    if (support > best) best = support, report.preferred = static_cast<int>(i);
+    if (std::abs(support - report.scores.support) <= margin) report.ambiguous = true;
+  }
+  if (report.preferred >= 0) {
+    // Preferred only when it stands clear of every other hypothesis too.
+    const double preferred = report.alternatives[report.preferred].scores.support;
+    for (std::size_t i = 0; i < report.alternatives.size(); ++i)
+      if (static_cast<int>(i) != report.preferred && report.alternatives[i].scores.support > preferred - margin)
+        report.preferred = -1;
+    report.ambiguous = report.preferred < 0;
+  }
+}
+
+}  // namespace
+
+void CalibrationCheck::Params::validate() const {
+  const auto positive = [](double value, const char* field) {
+    if (!(value > 0.0)) throw ParamError(field, "must be > 0");
+  };
+  const auto ordered = [](double suspect, double failed, const char* field) {
+    if (!(failed >= suspect)) throw ParamError(field, "must be >= its suspect threshold");
+  };
+  positive(edge_sigma_px, "edge_sigma_px");
+  if (max_edge_frames < 1) throw ParamError("max_edge_frames", "must be >= 1");
+  positive(scan_range_deg, "scan_range_deg");
+  positive(depth_tolerance, "depth_tolerance");
+  positive(outline_band, "outline_band");
+  positive(suspect_misalignment_deg, "suspect_misalignment_deg");
+  ordered(suspect_misalignment_deg, failed_misalignment_deg, "failed_misalignment_deg");
+  positive(suspect_roll_deg, "suspect_roll_deg");
+  ordered(suspect_roll_deg, failed_roll_deg, "failed_roll_deg");
+  positive(suspect_outline_deg, "suspect_outline_deg");
+  ordered(suspect_outline_deg, failed_outline_deg, "failed_outline_deg");
+  positive(suspect_plane_offset, "suspect_plane_offset");
+  ordered(suspect_plane_offset, failed_plane_offset, "failed_plane_offset");
+  positive(suspect_plane_tilt_deg, "suspect_plane_tilt_deg");
+  ordered(suspect_plane_tilt_deg, failed_plane_tilt_deg, "failed_plane_tilt_deg");
+  if (!(suspect_outside_fraction > 0.0 && suspect_outside_fraction < 1.0))
+    throw ParamError("suspect_outside_fraction", "must be in (0, 1)");
+  ordered(suspect_outside_fraction, failed_outside_fraction, "failed_outside_fraction");
+  positive(suspect_center_offset, "suspect_center_offset");
+  ordered(suspect_center_offset, failed_center_offset, "failed_center_offset");
+  if (!(suspect_alignment_gain > 0.0 && suspect_alignment_gain < 1.0))
+    throw ParamError("suspect_alignment_gain", "must be in (0, 1)");
+  ordered(suspect_alignment_gain, failed_alignment_gain, "failed_alignment_gain");
+  positive(suspect_depth_tilt_deg, "suspect_depth_tilt_deg");
+  ordered(suspect_depth_tilt_deg, failed_depth_tilt_deg, "failed_depth_tilt_deg");
+  positive(suspect_depth_bias, "suspect_depth_bias");
+  ordered(suspect_depth_bias, failed_depth_bias, "failed_depth_bias");
+  if (min_edge_points < 1) throw ParamError("min_edge_points", "must be >= 1");
+  if (min_scene_edge_points < 1) throw ParamError("min_scene_edge_points", "must be >= 1");
+  if (!(min_prominence >= 0.0 && min_prominence <= 1.0)) throw ParamError("min_prominence", "must be in [0, 1]");
+  positive(hypothesis_margin, "hypothesis_margin");
+}
+
+CalibrationCheck::CalibrationCheck(StereoCamera cameras, Target target)
+    : CalibrationCheck(std::move(cameras), target, Params{}) {}
+
+CalibrationCheck::CalibrationCheck(StereoCamera cameras, Target target, Params params)
+    : cameras_(std::move(cameras)), target_(target), params_(params) {
+  params_.validate();
+  target_.validate();
+}
+
+CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& frames,
+                                                 const Eigen::Isometry3d& T_lidar_camera,
+                                                 std::vector<Alternative> alternatives) const {
+  const auto start = std::chrono::steady_clock::now();
+  Report report;
+  report.frames = static_cast<int>(frames.size());
+  const detail::LeftView view = detail::LeftView::of(cameras_);
+  const detail::SceneScorer scorer(frames, view, target_, params_);
+  report.board_frames = scorer.board_frames();
+  report.edge_frames = scorer.edge_frames();
+  report.depth_frames = scorer.depth_frames();
+
+  const Eigen::Isometry3d T_camera_lidar = T_lidar_camera.inverse();
+  const detail::EdgeSums reference = scorer.edges(T_camera_lidar);
+  report.median_depth = scorer.median_edge_depth(T_camera_lidar);
+  const double depth = std::max(report.median_depth, 0.5);
+  report.scores = score(scorer, T_camera_lidar, reference, view, depth, params_);
+
+  if (alternatives.empty())
+    for (const CheckFrame& frame : frames)
+      if (frame.camera.T_camera_board) {
+        alternatives = board_alternatives(T_lidar_camera, *frame.camera.T_camera_board, target_);
+        break;
+      }
+  for (Alternative& alternative : alternatives)
+    alternative.scores = score(scorer, alternative.T_lidar_camera.inverse(), reference, view, depth, params_);
+  report.alternatives = std::move(alternatives);
+  compare_hypotheses(report, params_.hypothesis_margin);
+
+  if (report.scores.edge_points > 0) {
+    const detail::EdgeAlignment alignment =
+        detail::align_edges(scorer, T_camera_lidar, report.scores.edge_points, view, depth, params_);
+    report.peaks = alignment.peaks;
+    report.misalignment_px = alignment.motion_px;
+    report.misalignment = alignment.motion_px / view.fx;
+    report.alignment_gain = alignment.gain;
+    if (report.scores.scene_edge_points >= params_.min_scene_edge_points)
+      report.scene_misalignment = detail::scene_motion(scorer, T_camera_lidar, view, depth, params_) / view.fx;
+  }
+  detail::judge(report, params_, view.fx);
+  report.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace l2s

@@ -1,0 +1,76 @@
+// The readable report of the calibration check.
+
+#include <l2s/calibration_check.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace l2s {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::string line(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
+  char text[256];
+  std::snprintf(text, sizeof text, pattern, a, b, c, d);
+  return text;
+}
+
+void describe_scores(std::ostringstream& out, const CalibrationCheck::Scores& s, const char* indent) {
+  out << indent
+      << line("edges      %.3f of %.0f lidar edges on image edges; off the board %.3f of %.0f\n", s.edge_score,
+              s.edge_points, s.scene_edge_score, s.scene_edge_points);
+  if (std::isfinite(s.depth_agreement))
+    out << indent
+        << line("depth      %.3f of %.0f lidar returns agree with stereo; bias %+.1f %%, tilt off the board %.2f deg\n",
+                s.depth_agreement, s.depth_points, 100.0 * s.depth_bias, s.depth_tilt / kDeg);
+  if (std::isfinite(s.plane_offset))
+    out << indent
+        << line("board      plane offset %+.1f mm (spread %.1f mm), tilt %.2f deg\n", s.plane_offset * 1e3,
+                s.plane_spread * 1e3, s.plane_tilt / kDeg);
+  if (std::isfinite(s.outside_fraction))
+    out << indent
+        << line("outline    lidar board edges %.1f px from the outline and rims; %.1f %% of returns off the board\n",
+                s.outline_px, 100.0 * s.outside_fraction);
+  if (std::isfinite(s.center_offset))
+    out << indent << line("centres    lidar hole centres %.1f mm from the camera's holes (board plane)\n",
+                          s.center_offset * 1e3);
+  out << indent << line("support    %.3f\n", s.support);
+}
+
+}  // namespace
+
+const char* verdict_name(CalibrationCheck::Verdict verdict) {
+  switch (verdict) {
+    case CalibrationCheck::Verdict::Ok: return "ok";
+    case CalibrationCheck::Verdict::Suspect: return "suspect";
+    case CalibrationCheck::Verdict::Failed: return "failed";
+  }
+  return "?";
+}
+
+std::string describe(const CalibrationCheck::Report& report) {
+  std::ostringstream out;
+  out << "verdict    " << verdict_name(report.verdict) << "\n";
+  for (const auto& reason : report.reasons) out << "  - " << reason << "\n";
+  out << line("frames     %.0f given: %.0f with the board on both sides, %.0f with image edges, %.0f with stereo depth\n",
+              report.frames, report.board_frames, report.edge_frames, report.depth_frames);
+  describe_scores(out, report.scores, "");
+  if (report.scores.edge_points > 0) {
+    out << line("peaks      edges at median depth %.2f m; offset / half width at half height:\n", report.median_depth);
+    for (const auto& peak : report.peaks) {
+      const double unit = peak.rotation ? 1.0 / kDeg : 100.0;
+      out << "  " << peak.name << line(" %+8.3f / %7.3f ", peak.offset * unit, peak.width * unit)
+          << (peak.rotation ? "deg" : "cm ") << line("  (prominence %.2f)\n", peak.prominence);
+    }
+  }
+  for (const auto& alternative : report.alternatives) {
+    out << "alternative '" << alternative.name << "'\n";
+    describe_scores(out, alternative.scores, "  ");
+  }
+  out << line("time       %.0f ms\n", report.milliseconds);
+  return out.str();
+}
+
+}  // namespace l2s

@@ -1,0 +1,75 @@
+// Image edges for the calibration check: Canny on the rectified left image,
+// then the Euclidean distance transform, so that scoring a projected lidar
+// discontinuity is one lookup.
+
+#include "check/image_edges.hpp"
+
+#include "camera/cv_image.hpp"
+
+#include <l2s/error.hpp>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace l2s::detail {
+namespace {
+
+cv::Mat to_mat(const Eigen::MatrixXd& m) {
+  cv::Mat out(static_cast<int>(m.rows()), static_cast<int>(m.cols()), CV_64F);
+  for (int r = 0; r < m.rows(); ++r)
+    for (int c = 0; c < m.cols(); ++c) out.at<double>(r, c) = m(r, c);
+  return out;
+}
+
+}  // namespace
+
+cv::Mat rectified_left_gray(const Image& left, const StereoCamera& cameras) {
+  const CameraInfo& info = cameras.left;
+  if (left.width != info.width || left.height != info.height)
+    throw ParamError("left", "image size differs from the left camera");
+  cv::Mat gray = gray_mat(left, "left");
+  if (cameras.images != ImageKind::Raw) return gray;
+  const cv::Mat K = to_mat(info.camera_matrix), R = to_mat(info.rectification_matrix);
+  const cv::Mat P = to_mat(info.projection_matrix.leftCols<3>());
+  cv::Mat D(1, static_cast<int>(info.distortion_coefficients.size()), CV_64F);
+  for (int i = 0; i < D.cols; ++i) D.at<double>(0, i) = info.distortion_coefficients[i];
+  cv::Mat map_x, map_y;
+  const cv::Size size(info.width, info.height);
+  if (info.distortion_model == "equidistant")
+    cv::fisheye::initUndistortRectifyMap(K, D.colRange(0, std::min(4, D.cols)), R, P, size, CV_32FC1, map_x, map_y);
+  else
+    cv::initUndistortRectifyMap(K, D, R, P, size, CV_32FC1, map_x, map_y);
+  cv::Mat rectified;
+  cv::remap(gray, rectified, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0));
+  return rectified;
+}
+
+cv::Mat canny_edges(const cv::Mat& gray, double canny_low, double canny_high) {
+  cv::Mat edges;
+  cv::Canny(gray, edges, canny_low, canny_high, 3, true);
+  return edges;
+}
+
+EdgeDistanceMap edge_distance_map(const cv::Mat& gray, double canny_low, double canny_high) {
+  const cv::Mat edges = canny_edges(gray, canny_low, canny_high);
+  EdgeDistanceMap map;
+  map.width = gray.cols;
+  map.height = gray.rows;
+  map.edge_pixels = static_cast<std::size_t>(cv::countNonZero(edges));
+  // distanceTransform measures to the nearest zero pixel: edges must be zero.
+  cv::Mat distance;
+  cv::distanceTransform(255 - edges, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  map.distance.resize(static_cast<std::size_t>(map.width) * map.height);
+  for (int y = 0; y < map.height; ++y) {
+    const float* row = distance.ptr<float>(y);
+    for (int x = 0; x < map.width; ++x)
+      map.distance[static_cast<std::size_t>(y) * map.width + x] =
+          static_cast<std::uint8_t>(std::min(255.0, std::round(row[x] / map.unit)));
+  }
+  return map;
+}
+
+}  // namespace l2s::detail

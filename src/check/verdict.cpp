@@ -1,0 +1,128 @@
+// The verdict rules of the calibration check. Each measurement has a
+// suspect and a failed threshold (CalibrationCheck::Params); the verdict is
+// the worst level reached, and every rule reached leaves a reason.
+
+#include "check/verdict.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace l2s::detail {
+namespace {
+
+using Verdict = CalibrationCheck::Verdict;
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct Judgement {
+  std::vector<std::string> failed, suspect;
+
+  /// Adds `text` at the level `value` reaches (NaN: no evidence, no reason).
+  void grade(double value, double suspect_at, double failed_at, const std::string& text) {
+    if (!(std::abs(value) > suspect_at)) return;
+    (std::abs(value) > failed_at ? failed : suspect).push_back(text);
+  }
+};
+
+std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
+  char text[256];
+  std::snprintf(text, sizeof text, pattern, a, b, c);
+  return text;
+}
+
+void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, double fx, Judgement& j) {
+  const auto& s = r.scores;
+  j.grade(s.plane_offset, p.suspect_plane_offset, p.failed_plane_offset,
+          format("lidar board returns lie %.1f mm from the camera's board plane", s.plane_offset * 1e3));
+  j.grade(s.plane_tilt, p.suspect_plane_tilt_deg * kDeg, p.failed_plane_tilt_deg * kDeg,
+          format("the lidar board is tilted %.2f deg against the camera's", s.plane_tilt / kDeg));
+  j.grade(s.outline_px / fx, p.suspect_outline_deg * kDeg, p.failed_outline_deg * kDeg,
+          format("lidar board edges lie %.1f px (%.2f deg) from the board's outline and hole rims", s.outline_px,
+                 s.outline_px / fx / kDeg));
+  j.grade(s.depth_tilt, p.suspect_depth_tilt_deg * kDeg, p.failed_depth_tilt_deg * kDeg,
+          format("off the board, lidar depths tilt %.2f deg against the stereo depths (a rotation error; the board "
+                 "may have moved between the lidar sweep and the images)",
+                 s.depth_tilt / kDeg));
+  j.grade(s.depth_bias, p.suspect_depth_bias, p.failed_depth_bias,
+          format("lidar depths are %+.1f %% off the stereo depths (a wrong target size or baseline, or a shift along "
+                 "the view)",
+                 100.0 * s.depth_bias));
+  j.grade(s.center_offset, p.suspect_center_offset, p.failed_center_offset,
+          format("the lidar's hole centres lie %.1f mm from the camera's holes in the board plane (a shift or turn of "
+                 "the transform)",
+                 s.center_offset * 1e3));
+  j.grade(s.outside_fraction, p.suspect_outside_fraction, p.failed_outside_fraction,
+          format("%.0f %% of the lidar board returns fall outside the board's outline or inside a hole "
+                 "(wrong transform, or a target.yaml that is not the board)",
+                 100.0 * s.outside_fraction));
+}
+
+void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, Judgement& j) {
+  if (r.edge_frames == 0) {
+    j.suspect.push_back("no image edges to check against: only the board was checked");
+    return;
+  }
+  if (r.scores.edge_points < p.min_edge_points) {
+    j.suspect.push_back(format("only %.0f lidar depth edges fall into the images (need %.0f): too little evidence",
+                               r.scores.edge_points, static_cast<double>(p.min_edge_points)));
+    return;
+  }
+  int best = 0;  // the degree of freedom whose scan found the best alignment
+  for (int k = 1; k < 6; ++k)
+    if (r.peaks[k].best_gain > r.peaks[best].best_gain) best = k;
+  const auto& peak = r.peaks[best];
+  j.grade(r.alignment_gain, p.suspect_alignment_gain, p.failed_alignment_gain,
+          format("the lidar edges align %.0f %% better with the image elsewhere (%+.2f ", 100.0 * r.alignment_gain,
+                 peak.best_offset * (peak.rotation ? 1.0 / kDeg : 100.0)) +
+              (peak.rotation ? "deg in " : "cm in ") + peak.name + ")");
+  j.grade(r.misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
+          format("the lidar edges align best with the image %.1f px (%.2f deg) away", r.misalignment_px,
+                 r.misalignment / kDeg));
+  j.grade(r.scene_misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
+          format("the lidar edges off the board align best with the image %.2f deg away, while the board's align: "
+                 "the board moved between the lidar sweep and the images (sensors not synchronised?)",
+                 r.scene_misalignment / kDeg));
+  j.grade(r.peaks[2].offset, p.suspect_roll_deg * kDeg, p.failed_roll_deg * kDeg,
+          format("the lidar edges align best with the image rolled %+.2f deg about the optical axis",
+                 r.peaks[2].offset / kDeg));
+  for (int k = 0; k < 2; ++k)
+    if (r.peaks[k].prominence < p.min_prominence)
+      j.suspect.push_back("the edge score has no clear optimum in " + r.peaks[k].name +
+                          format(" (prominence %.2f)", r.peaks[k].prominence));
+}
+
+void judge_hypotheses(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, Judgement& j) {
+  if (r.preferred >= 0) {
+    const auto& a = r.alternatives[r.preferred];
+    j.failed.push_back("the scene supports '" + a.name + "' better (support " +
+                       format("%.2f vs %.2f", a.scores.support, r.scores.support) +
+                       "): the hole labels of the two sensors disagree by a turn of the pattern");
+  } else if (r.ambiguous) {
+    std::string names;
+    for (const auto& a : r.alternatives)
+      if (std::abs(a.scores.support - r.scores.support) <= p.hypothesis_margin)
+        names += (names.empty() ? "'" : ", '") + a.name + "' (" + format("%.2f", a.scores.support) + ")";
+    j.failed.push_back("ambiguous: the scene supports " + names + " about as well as this transform (" +
+                       format("%.2f", r.scores.support) +
+                       "); add structure beside the board (a box, a post) or texture behind it");
+  }
+}
+
+}  // namespace
+
+void judge(CalibrationCheck::Report& report, const CalibrationCheck::Params& params, double fx) {
+  Judgement j;
+  if (report.board_frames == 0 && report.edge_frames == 0) {
+    j.failed.push_back("no frame holds the evidence: lidar board returns with a camera board pose, or image edges");
+  } else {
+    judge_hypotheses(report, params, j);
+    judge_board(report, params, fx, j);
+    judge_edges(report, params, j);
+  }
+  report.reasons = j.failed;
+  report.reasons.insert(report.reasons.end(), j.suspect.begin(), j.suspect.end());
+  report.verdict = !j.failed.empty() ? Verdict::Failed : !j.suspect.empty() ? Verdict::Suspect : Verdict::Ok;
+}
+
+}  // namespace l2s::detail

@@ -1,0 +1,166 @@
+// The calibration check on simulated frames: the true transform is ok; a
+// transform 1 deg / 2 cm off, a mirrored fit (hole labels turned 180 deg)
+// and a grossly wrong one are not, whatever their centre residuals. Also
+// the observer's discontinuities on hand-made sweeps.
+
+#include <l2s/calibration_check.hpp>
+#include <l2s/check_frames.hpp>
+#include <l2s/error.hpp>
+#include <l2s/metrics.hpp>
+#include <l2s/sim/simulation.hpp>
+
+#include "support/test_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace l2s {
+namespace {
+
+using Verdict = CalibrationCheck::Verdict;
+
+const sim::DatasetSimulator& simulator() {
+  static const sim::DatasetSimulator instance([] {
+    auto config = sim::SimulationConfig::paper(1, "vlp16");
+    config.frames = 3;
+    config.seed = 31;
+    return config;
+  }());
+  return instance;
+}
+
+const std::vector<CheckFrame>& frames() {
+  static const std::vector<CheckFrame> observed = [] {
+    std::vector<CheckFrame> out;
+    const auto params = Calibrator::Params::preset("default");
+    for (int i = 0; i < simulator().config().frames; ++i) {
+      const auto frame = simulator().frame(i);
+      out.push_back(observe_frame(frame.lidar, frame.left, frame.right, simulator().cameras(),
+                                  simulator().config().target, params, SceneObserver(), std::to_string(i)));
+    }
+    return out;
+  }();
+  return observed;
+}
+
+CalibrationCheck make_check() { return CalibrationCheck(simulator().cameras(), simulator().config().target); }
+
+std::string reasons(const CalibrationCheck::Report& report) { return describe(report); }
+
+TEST(CalibrationCheck, TrueTransformIsOk) {
+  const auto report = make_check().check(frames(), simulator().T_lidar_camera());
+  EXPECT_EQ(report.verdict, Verdict::Ok) << reasons(report);
+  EXPECT_EQ(report.board_frames, 3);
+  EXPECT_EQ(report.edge_frames, 3);
+  EXPECT_GT(report.scores.edge_points, 60);
+  EXPECT_LT(std::abs(report.scores.plane_offset), 0.005);
+  EXPECT_LT(report.misalignment * 180 / M_PI, 0.15);
+  ASSERT_EQ(report.alternatives.size(), 1u);  // the default board's rectangle: one half turn
+  EXPECT_EQ(report.alternatives[0].degrees, 180);
+  EXPECT_FALSE(report.ambiguous);
+  EXPECT_EQ(report.preferred, -1);
+  // A clear optimum in the degrees of freedom the image shows best.
+  EXPECT_LT(report.peaks[1].width * 180 / M_PI, 0.5);
+  EXPECT_GT(report.peaks[1].prominence, 0.5);
+}
+
+// 1 deg about each camera axis, with 2 cm along another: every one is off.
+TEST(CalibrationCheck, PerturbedTransformIsReportedOff) {
+  const Eigen::Isometry3d truth = simulator().T_lidar_camera();
+  for (int axis = 0; axis < 3; ++axis) {
+    Eigen::Isometry3d wrong = truth;
+    wrong.linear() = truth.linear() * Eigen::AngleAxisd(M_PI / 180, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+    wrong.translation() += 0.02 * (truth.linear() * Eigen::Vector3d::Unit((axis + 1) % 3));
+    const auto report = make_check().check(frames(), wrong);
+    EXPECT_NE(report.verdict, Verdict::Ok) << "axis " << axis << "\n" << reasons(report);
+    EXPECT_FALSE(report.reasons.empty());
+  }
+}
+
+// The fit with the camera's labels turned 180 deg matches the four centres
+// exactly as well; the scene tells it apart and names the right one.
+TEST(CalibrationCheck, MirroredFitFailsAndTheSceneSupportsTheRightOne) {
+  const Eigen::Isometry3d truth = simulator().T_lidar_camera();
+  const auto mirrored = board_alternatives(truth, *frames()[0].camera.T_camera_board, simulator().config().target);
+  ASSERT_EQ(mirrored.size(), 1u);
+  const auto report = make_check().check(frames(), mirrored[0].T_lidar_camera);
+  EXPECT_EQ(report.verdict, Verdict::Failed) << reasons(report);
+  ASSERT_GE(report.preferred, 0) << reasons(report);
+  EXPECT_POSE_NEAR(report.alternatives[report.preferred].T_lidar_camera, truth, 0.1, 0.005);
+}
+
+TEST(CalibrationCheck, GrosslyWrongTransformFails) {
+  Eigen::Isometry3d wrong = simulator().T_lidar_camera();
+  wrong.linear() = wrong.linear() * Eigen::AngleAxisd(178 * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  wrong.translation() += Eigen::Vector3d(0.5, 3.0, 1.0);
+  const auto report = make_check().check(frames(), wrong);
+  EXPECT_EQ(report.verdict, Verdict::Failed) << reasons(report);
+}
+
+TEST(CalibrationCheck, NoFramesFailWithAReason) {
+  const auto report = make_check().check({}, simulator().T_lidar_camera());
+  EXPECT_EQ(report.verdict, Verdict::Failed);
+  ASSERT_FALSE(report.reasons.empty());
+  EXPECT_NE(report.reasons[0].find("no frame"), std::string::npos) << report.reasons[0];
+}
+
+TEST(CalibrationCheck, RejectsInvalidParams) {
+  CalibrationCheck::Params params;
+  params.failed_plane_offset = params.suspect_plane_offset / 2;
+  try {
+    CalibrationCheck(simulator().cameras(), Target{}, params);
+    FAIL() << "expected ParamError";
+  } catch (const ParamError& error) {
+    EXPECT_EQ(error.field(), "failed_plane_offset");
+  }
+}
+
+// One ring: a wall at 5 m, a box at 2 m in front of it over azimuths
+// -0.1..0.1 rad, 0.2 deg steps. Its two silhouette edges lie halfway to the
+// wall's first return, at the box's range.
+LidarCloud box_sweep(bool with_rings) {
+  LidarCloud cloud;
+  const double step = 0.2 * M_PI / 180;
+  for (double azimuth = -0.5; azimuth <= 0.5; azimuth += step) {
+    const double range = std::abs(azimuth) < 0.1 ? 2.0 : 5.0;
+    for (const double elevation : {-0.02, 0.0, 0.02}) {
+      cloud.points.push_back(range * Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth),
+                                                     std::cos(elevation) * std::sin(azimuth), std::sin(elevation)));
+      if (with_rings) cloud.ring.push_back(static_cast<std::uint16_t>(std::lround(elevation / 0.02 + 1)));
+    }
+  }
+  return cloud;
+}
+
+TEST(SceneObserver, FindsSilhouettesAlongRings) {
+  const LidarObservation observed = SceneObserver().observe_lidar(box_sweep(true), {});
+  EXPECT_FALSE(observed.ring_free);
+  ASSERT_EQ(observed.scene_edges.size(), 6u);  // two per ring; the ring's open ends are not edges
+  for (const auto& edge : observed.scene_edges) {
+    EXPECT_NEAR(edge.norm(), 2.0, 1e-9);
+    EXPECT_NEAR(std::abs(std::atan2(edge.y(), edge.x())), 0.1, 0.2 * M_PI / 180);
+  }
+  EXPECT_TRUE(observed.board_edges.empty());
+}
+
+TEST(SceneObserver, FindsSilhouettesWithoutRings) {
+  const LidarObservation observed = SceneObserver().observe_lidar(box_sweep(false), {});
+  EXPECT_TRUE(observed.ring_free);
+  ASSERT_GE(observed.scene_edges.size(), 6u);
+  for (const auto& edge : observed.scene_edges) EXPECT_NEAR(edge.norm(), 2.0, 1e-9);
+}
+
+TEST(SceneObserver, RejectsInvalidParams) {
+  SceneObserver::Params params;
+  params.canny_high = params.canny_low - 1;
+  try {
+    SceneObserver{params};
+    FAIL() << "expected ParamError";
+  } catch (const ParamError& error) {
+    EXPECT_EQ(error.field(), "canny_high");
+  }
+}
+
+}  // namespace
+}  // namespace l2s
