@@ -143,7 +143,9 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   EXPECT_TRUE(back.scene.empty());
 
   row.scene = "800x600 95.0deg B=0.235m rectified | wood on plain 1.93m, colour | avia (quirks)";
+  row.verdict = "suspect";
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).scene, row.scene);
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).verdict, "suspect");
 
   const SuiteRow good = parse_csv_line(to_csv_line(sample_row()));
   EXPECT_EQ(good.e_t, sample_row().e_t) << "errors are written exactly";
@@ -264,6 +266,19 @@ TEST(SuiteStats, SummaryHasATablePerExperimentAndTheFailures) {
   EXPECT_NE(summary.find("## noise"), std::string::npos);
   EXPECT_NE(summary.find("| vlp16 | 2 | paper | 30 | 4 | 2 | 50 % | 1.23 |"), std::string::npos) << summary;
   EXPECT_NE(summary.find("1 x the board was never found in # frames"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("scene check"), std::string::npos) << "no verdicts, no section";
+}
+
+TEST(SuiteStats, SummarySortsTheVerdictsByTheTrueError) {
+  std::vector<SuiteRow> rows(3, sample_row());
+  for (int i = 0; i < 3; ++i) rows[i].setting = i + 1;  // three cells
+  rows[0].e_t = 0.001, rows[0].e_r = 0.001, rows[0].verdict = "ok";      // good
+  rows[1].e_t = 0.3, rows[1].e_r = 0.001, rows[1].verdict = "failed";    // off
+  rows[2].e_t = 0.05, rows[2].e_r = 0.001, rows[2].verdict = "suspect";  // in between
+  const std::string summary = suite_summary_markdown(rows);
+  EXPECT_NE(summary.find("| within 2 cm and 0.5 deg | 1 | 1 | 0 | 0 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("| in between | 1 | 0 | 1 | 0 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("| beyond 10 cm or 2 deg | 1 | 0 | 0 | 1 |"), std::string::npos) << summary;
 }
 
 TEST(SuiteThresholds, ReportsCellsOutsideTheLimits) {

@@ -20,8 +20,8 @@ namespace {
 
 constexpr const char* kHeader =
     "experiment,setting,lidar,noise_k,frames,preset,seed,repetition,success,reason,e_t_m,e_r_rad,"
-    "lidar_frames,camera_frames,wall_s,scene";
-constexpr std::size_t kColumns = 16;
+    "lidar_frames,camera_frames,wall_s,scene,verdict";
+constexpr std::size_t kColumns = 17;
 
 std::string quote(const std::string& text) {
   std::string flat = text;
@@ -92,7 +92,7 @@ std::string to_csv_line(const SuiteRow& r) {
       << ',' << r.frames << ',' << quote(r.preset) << ',' << r.seed << ',' << r.repetition << ','
       << (r.success ? 1 : 0) << ',' << quote(r.reason) << ',' << number(r.e_t, 17) << ','
       << number(r.e_r, 17) << ',' << r.lidar_frames << ',' << r.camera_frames << ','
-      << number(r.wall_s, 4) << ',' << quote(r.scene);
+      << number(r.wall_s, 4) << ',' << quote(r.scene) << ',' << quote(r.verdict);
   return out.str();
 }
 
@@ -121,6 +121,7 @@ SuiteRow parse_csv_line(const std::string& line) {
     r.camera_frames = to_int(f[13]);
     r.wall_s = to_double(f[14]);
     r.scene = f[15];
+    r.verdict = f[16];
     return r;
   } catch (const std::logic_error& error) {  // std::stoi and friends
     throw Error(std::string("bad number (") + error.what() + ")");

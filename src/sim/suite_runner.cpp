@@ -30,6 +30,7 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
                   const Eigen::Isometry3d& T_true, double wall_s, const std::string& scene) {
   SuiteRow row = SuiteRow::of(cell);
   row.scene = scene;
+  if (result.checked) row.verdict = verdict_name(result.quality.verdict);
   row.frames = result.frames_added;
   row.success = result.found;
   row.reason = result.reason;

@@ -3,6 +3,7 @@
 
 #include <l2s/sim/suite_results.hpp>
 
+#include "sim/suite_check_summary.hpp"
 #include "sim/suite_scenes_summary.hpp"
 
 #include <algorithm>
@@ -148,6 +149,7 @@ std::string suite_summary_markdown(const std::vector<SuiteRow>& all_rows) {
       for (const auto& [reason, count] : reasons) out << "- " << count << " x " << reason << "\n";
     }
   }
+  detail::write_check_summary(out, rows);
   return out.str();
 }
 

@@ -87,6 +87,7 @@ struct L2S_SUITE_EXPORT SuiteRow {
   int camera_frames = 0;     ///< frames whose camera branch found four centres
   double wall_s = 0.0;       ///< [s] calibration time of this run so far (simulation excluded)
   std::string scene;         ///< scenes: what was drawn (RandomScene::summary), else empty
+  std::string verdict;       ///< the scene check's verdict (ok | suspect | failed), empty when not checked
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;
