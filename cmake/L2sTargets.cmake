@@ -54,6 +54,9 @@ function(l2s_add_library name)
     set_target_properties(${name} PROPERTIES DEFINE_SYMBOL "")
   endif()
   if(L2SCALIB_BUILD_SHARED AND CMAKE_SYSTEM_NAME STREQUAL "Linux")
+    # A component (sim, pcl, viz) finds the core beside it once installed: a
+    # consumer's own RUNPATH covers only the libraries it links directly.
+    set_target_properties(${name} PROPERTIES INSTALL_RPATH "$ORIGIN")
     target_link_options(${name} PRIVATE "LINKER:--version-script=${PROJECT_SOURCE_DIR}/cmake/l2scalib.map")
     set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS ${PROJECT_SOURCE_DIR}/cmake/l2scalib.map)
   endif()
