@@ -95,7 +95,8 @@ std::vector<CircleCandidate2> find_circle_candidates_by_votes(const std::vector<
     votes.vote(p.q - r * p.direction);
   }
   votes.smooth();
-  for (const auto& [strength, centre] : votes.peaks()) {
+  for (const auto& peak : votes.peaks()) {
+    const Eigen::Vector2d centre = peak.second;  // a named copy: lambdas may not capture structured bindings (C++17)
     if (candidates.size() >= search.max_candidates) break;
     const auto near = [&](const CircleCandidate2& c) { return (c.center - centre).norm() < search.separation; };
     if (std::any_of(candidates.begin(), candidates.end(), near)) continue;
