@@ -19,7 +19,7 @@ scripts/setup.sh
 # Reports stop the process (-fno-sanitize-recover) and fail the test.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1}
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1:suppressions=$(pwd)/scripts/tsan.supp}
 
 configure() {  # configure BUILD_DIR SANITIZERS [cmake args...]
   local dir=$1 sanitizers=$2
