@@ -83,7 +83,11 @@ std::vector<Eigen::Vector3d> ring_discontinuities(const LidarCloud& cloud, const
 
 std::vector<Eigen::Vector3d> grid_discontinuities(const LidarCloud& cloud, const JumpRule& rule, double step) {
   // Nearest return per cell; keys pack (column, row) into one integer.
-  const auto key = [](std::int64_t column, std::int64_t row) { return (column << 32) ^ (row & 0xffffffff); };
+  // (Unsigned: a negative column shifted left is undefined behaviour.)
+  const auto key = [](std::int64_t column, std::int64_t row) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(column) << 32) ^
+                                     (static_cast<std::uint64_t>(row) & 0xffffffffULL));
+  };
   std::unordered_map<std::int64_t, Return> cells;
   for (const Eigen::Vector3d& p : cloud.points) {
     if (!p.allFinite() || p.norm() < rule.min_range) continue;
