@@ -12,6 +12,7 @@ constexpr double kMaxU = 2.0;         // [1/m] returns nearer than 0.5 m shift t
 constexpr double kCoarseStep = 0.01;  // [m] of h in the first pass
 constexpr std::size_t kMinBandPoints = 40;  // fewer make a noisy histogram
 constexpr double kMinGain = 0.03;           // a band's best h must sharpen it by 3 % to count
+constexpr double kMaxBins = 1e6;            // histogram bins: 1 km of spread at 1 mm
 
 // Sum of c log c over the counts c of neighbouring bin pairs of a histogram
 // (pairs soften bin-edge effects), i.e. minus their entropy: large when the
@@ -63,7 +64,11 @@ Scan scan(const std::vector<Point>& points, double center, double range, double 
   double half_range = range;
   for (const double scale : {4.0, 2.0, 1.0}) {  // bin width and step shrink together
     const double width = bin_width * scale, delta = step * scale / 4.0;
-    histogram.assign(static_cast<std::size_t>((t_high - t_low) / width) + 2, 0u);
+    // Returns kilometres away (or garbage) would ask for a histogram without
+    // bound: no profile then, rather than an allocation failure.
+    const double bins = (t_high - t_low) / width;
+    if (!std::isfinite(bins) || bins > kMaxBins) return best;
+    histogram.assign(static_cast<std::size_t>(bins) + 2, 0u);
     const auto score_at = [&](double h) {
       bin(points, h, t_low, width, histogram);
       return sharpness(histogram, 0, histogram.size());
