@@ -21,6 +21,10 @@ struct ModelInput {
 inline ModelInput model_input(const LidarCloud& cloud, std::size_t begin = 0,
                               std::size_t end = static_cast<std::size_t>(-1)) {
   constexpr double kMinDistance = 1e-3;  // [m] horizontal
+  // Beyond any lidar: farther than 1 km, or steeper than 89.4 deg. Such values
+  // are garbage, and they would stretch the models' histograms without bound.
+  constexpr double kMaxRange = 1000.0;  // [m]
+  constexpr double kMaxSlope = 100.0;   // |z| / horizontal distance
   ModelInput input;
   end = std::min(end, cloud.size());
   input.points.reserve(end > begin ? end - begin : 0);
@@ -29,7 +33,7 @@ inline ModelInput model_input(const LidarCloud& cloud, std::size_t begin = 0,
     const Eigen::Vector3d& p = cloud.points[i];
     if (!p.allFinite()) continue;
     const double d = std::sqrt(p.x() * p.x() + p.y() * p.y());
-    if (!(d >= kMinDistance)) continue;
+    if (!(d >= kMinDistance) || d > kMaxRange || std::abs(p.z()) > kMaxSlope * d) continue;
     input.points.push_back({1.0 / d, p.z() / d});
     input.index.push_back(i);
   }
