@@ -1,6 +1,7 @@
 #include "calibrator/branches.hpp"
 
 #include "camera/cv_image.hpp"
+#include "camera/stereo_cloud_subset.hpp"
 #include "detail/board_frame.hpp"
 #include "plane/plane_fit.hpp"
 #include "verify/hypothesis_search.hpp"
@@ -16,17 +17,6 @@ BranchReport fail(BranchReport report, const char* stage, const std::string& rea
   report.failed_stage = stage;
   report.reason = reason;
   return report;
-}
-
-StereoCloud subset(const StereoCloud& cloud, const std::vector<std::size_t>& indices) {
-  StereoCloud out;
-  out.points.reserve(indices.size());
-  out.pixels.reserve(indices.size());
-  for (const std::size_t i : indices) {
-    out.points.push_back(cloud.points[i]);
-    out.pixels.push_back(cloud.pixels[i]);
-  }
-  return out;
 }
 
 /// The points of `cloud` within `band` of `plane` (or 3 sigma of their depth

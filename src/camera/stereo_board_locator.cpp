@@ -8,6 +8,7 @@
 
 #include <l2s/error.hpp>
 
+#include "camera/stereo_cloud_subset.hpp"
 #include "detail/input_checks.hpp"
 
 #include <algorithm>
@@ -17,21 +18,12 @@
 namespace l2s {
 namespace {
 
+using detail::subset;
+
 double quantile(std::vector<double> values, double q) {
   const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
   return values[k];
-}
-
-StereoCloud subset(const StereoCloud& cloud, const std::vector<std::size_t>& indices) {
-  StereoCloud out;
-  out.points.reserve(indices.size());
-  out.pixels.reserve(indices.size());
-  for (const std::size_t i : indices) {
-    out.points.push_back(cloud.points[i]);
-    out.pixels.push_back(cloud.pixels[i]);
-  }
-  return out;
 }
 
 }  // namespace
