@@ -161,7 +161,7 @@ void yaml_seeds(const fs::path& out, const sim::DatasetSimulator& simulator) {
   io::write_target((out / "target_yaml/paper2017.yaml").string(), Target::paper2017());
   io::write_calibrator_params((out / "params_yaml/default.yaml").string(), Calibrator::Params::preset("default"));
   write_bytes(out / "params_yaml/paper_overrides.yaml",
-              "preset: paper\nlidar_plane:\n  distance_threshold: 0.02\nmin_frames: 3\nregistrar:\n  {}\n");
+              "preset: paper\nlidar_plane:\n  distance_threshold: 0.02\naccumulator:\n  min_frames: 3\nregistrar:\n  {}\n");
   io::write_transform((out / "transform_yaml/ground_truth.yaml").string(), simulator.T_lidar_camera());
   write_bytes(out / "transform_yaml/rounded.yaml",
               "T_lidar_camera:\n  rows: 4\n  cols: 4\n  data: [0.0, -1.0, 0.0, 0.1, 0.0, 0.0, -1.0, 0.2,\n"

@@ -174,13 +174,13 @@ TEST_F(BadInput, ParamsUnknownKey) {
 }
 
 TEST_F(BadInput, ParamsValueOfTheWrongType) {
-  const std::string path = file("p.yaml", "min_frames: many\n");
-  EXPECT_ERROR(io::read_calibrator_params(path), FileError, path, "key min_frames: not a valid integer");
+  const std::string path = file("p.yaml", "accumulator:\n  min_frames: many\n");
+  EXPECT_ERROR(io::read_calibrator_params(path), FileError, path, "key accumulator.min_frames: not a valid integer");
 }
 
 TEST_F(BadInput, ParamsValueOutOfRange) {
-  const std::string path = file("p.yaml", "min_frames: 0\n");
-  EXPECT_ERROR(io::read_calibrator_params(path), FileError, path, "parameter min_frames");
+  const std::string path = file("p.yaml", "accumulator:\n  min_frames: 0\n");
+  EXPECT_ERROR(io::read_calibrator_params(path), FileError, path, "parameter accumulator.min_frames");
 }
 
 TEST_F(BadInput, ParamsUnknownPreset) {
@@ -236,8 +236,8 @@ TEST_F(BadInput, CalibratorRigWithNonPositiveBaseline) {
 
 TEST_F(BadInput, CalibratorInvalidParams) {
   Calibrator::Params params;
-  params.min_frames = 0;
-  EXPECT_ERROR(Calibrator(rig(), Target{}, params), ParamError, "parameter min_frames", "");
+  params.accumulator.min_frames = 0;
+  EXPECT_ERROR(Calibrator(rig(), Target{}, params), ParamError, "parameter accumulator.min_frames", "");
 }
 
 TEST_F(BadInput, CalibratorImpossibleTarget) {

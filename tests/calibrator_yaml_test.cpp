@@ -28,12 +28,24 @@ TEST(CalibratorParamsYaml, RoundTripsEveryPreset) {
   }
 }
 
+// One default: a user who writes Params{} gets what the tools call "default"
+// (every field, compared through the file that lists them all).
+TEST(CalibratorParamsYaml, DefaultConstructedParamsAreTheDefaultPreset) {
+  l2s::test::TempDir dir;
+  l2s::io::write_calibrator_params(dir.file("constructed.yaml"), Calibrator::Params{});
+  l2s::io::write_calibrator_params(dir.file("preset.yaml"), Calibrator::Params::preset("default"));
+  l2s::io::write_calibrator_params(dir.file("paper.yaml"), Calibrator::Params::preset("paper"));
+  const std::string constructed = l2s::test::read_bytes(dir.file("constructed.yaml"));
+  EXPECT_EQ(constructed, l2s::test::read_bytes(dir.file("preset.yaml")));
+  EXPECT_NE(constructed, l2s::test::read_bytes(dir.file("paper.yaml")));
+}
+
 TEST(CalibratorParamsYaml, OverridesOnTopOfThePreset) {
   l2s::test::TempDir dir;
-  l2s::test::write_text(dir.file("p.yaml"), "preset: paper\nedges:\n  sobel_threshold: 90\nmin_frames: 5\n");
+  l2s::test::write_text(dir.file("p.yaml"), "preset: paper\nedges:\n  sobel_threshold: 90\naccumulator:\n  min_frames: 5\n");
   const auto params = l2s::io::read_calibrator_params(dir.file("p.yaml"));
   EXPECT_DOUBLE_EQ(params.edges.sobel_threshold, 90.0);
-  EXPECT_EQ(params.min_frames, 5);
+  EXPECT_EQ(params.accumulator.min_frames, 5);
   EXPECT_FALSE(params.refine_camera_pose);  // from the paper preset
 }
 
@@ -52,7 +64,7 @@ TEST(CalibratorParamsYaml, RejectsTyposBadValuesAndInvalidParams) {
   l2s::test::TempDir dir;
   const std::string path = dir.file("bad.yaml");
   expect_file_error(path, "edges:\n  sobel_treshold: 100\n", "unknown key edges.sobel_treshold");
-  expect_file_error(path, "min_frames: many\n", "min_frames");
+  expect_file_error(path, "accumulator:\n  min_frames: many\n", "accumulator.min_frames");
   expect_file_error(path, "discontinuity:\n  placement: middle\n", "placement");
   expect_file_error(path, "lidar_plane:\n  max_angle: -1\n", "lidar_plane.max_angle");
   expect_file_error(path, "preset: fancy\n", "fancy");

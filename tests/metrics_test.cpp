@@ -9,7 +9,7 @@
 namespace {
 
 TEST(PoseError, IsZeroForIdenticalPoses) {
-  const auto T = l2s::pose_from_ypr(0.3, -0.1, 0.2, {1, 2, 3});
+  const auto T = l2s::pose_from_roll_pitch_yaw(0.2, -0.1, 0.3, {1, 2, 3});
   const auto error = l2s::pose_error(T, T);
   EXPECT_NEAR(error.translation, 0.0, 1e-12);
   EXPECT_NEAR(error.rotation, 0.0, 1e-9);
@@ -17,13 +17,13 @@ TEST(PoseError, IsZeroForIdenticalPoses) {
 
 TEST(PoseError, MeasuresTranslationAsEuclideanDistance) {
   const auto error =
-      l2s::pose_error(l2s::pose_from_ypr(0, 0, 0, {0.03, 0.04, 0}), l2s::pose_from_ypr(0, 0, 0, {0, 0, 0}));
+      l2s::pose_error(l2s::pose_from_roll_pitch_yaw(0, 0, 0, {0.03, 0.04, 0}), l2s::pose_from_roll_pitch_yaw(0, 0, 0, {0, 0, 0}));
   EXPECT_NEAR(error.translation, 0.05, 1e-12);
 }
 
 TEST(PoseError, MeasuresRotationAsAngleOfRelativeRotation) {
   // A rotation about any axis by a known angle, composed with a common base pose.
-  const auto base = l2s::pose_from_ypr(0.5, 0.2, -0.3, {0, 0, 0});
+  const auto base = l2s::pose_from_roll_pitch_yaw(-0.3, 0.2, 0.5, {0, 0, 0});
   Eigen::Isometry3d other = base;
   other.linear() = base.linear() * Eigen::AngleAxisd(0.01, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   EXPECT_NEAR(l2s::pose_error(other, base).rotation, 0.01, 1e-9);
@@ -37,7 +37,7 @@ TEST(PoseError, MeasuresRotationAsAngleOfRelativeRotation) {
 namespace {
 
 TEST(RollPitchYaw, InvertsPoseFromYpr) {
-  const auto T = l2s::pose_from_ypr(-0.672, 0.258, 0.075, {0, 0, 0});
+  const auto T = l2s::pose_from_roll_pitch_yaw(0.075, 0.258, -0.672, {0, 0, 0});
   const Eigen::Vector3d rpy = l2s::roll_pitch_yaw(T.rotation());
   EXPECT_NEAR(rpy[0], 0.075, 1e-12);
   EXPECT_NEAR(rpy[1], 0.258, 1e-12);

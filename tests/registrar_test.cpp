@@ -28,7 +28,7 @@ HoleCenters transformed(const Eigen::Isometry3d& T, const HoleCenters& in) {
 
 TEST(Registrar, RecoversKnownTransformExactly) {
   // Camera optical to lidar (x fwd, y left, z up) plus a large yaw and pitch.
-  const Eigen::Isometry3d T_true = l2s::pose_from_ypr(0.67, 0.3, -0.1, {-0.4, 0.3, -0.2});
+  const Eigen::Isometry3d T_true = l2s::pose_from_roll_pitch_yaw(-0.1, 0.3, 0.67, {-0.4, 0.3, -0.2});
   const HoleCenters camera = camera_centres();
   const Registrar::Result result = Registrar().estimate(transformed(T_true, camera), camera);
   ASSERT_TRUE(result.found) << result.reason;
@@ -41,7 +41,7 @@ TEST(Registrar, RecoversKnownTransformFromNoisyCentres) {
   std::normal_distribution<double> noise(0.0, 0.003);
   const Eigen::Matrix3d optical_to_body = (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();
   for (const double yaw : {0.0, 0.67, -1.2, 3.0}) {
-    Eigen::Isometry3d T_true = l2s::pose_from_ypr(yaw, 0.3, 0.05, {0.1, -0.5, 0.8});
+    Eigen::Isometry3d T_true = l2s::pose_from_roll_pitch_yaw(0.05, 0.3, yaw, {0.1, -0.5, 0.8});
     T_true.linear() = T_true.linear() * optical_to_body;
     const HoleCenters camera = camera_centres();
     HoleCenters lidar = transformed(T_true, camera);

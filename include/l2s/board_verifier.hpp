@@ -30,6 +30,9 @@ struct BoardEvidence {
 };
 
 /// Judges the evidence of one board hypothesis.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT BoardVerifier {
  public:
   struct Params {

@@ -46,7 +46,8 @@ struct BranchReport {
   std::size_t input_points = 0;   ///< points after the pass-through filter
   std::size_t plane_inliers = 0;  ///< board-plane points
   std::size_t edge_points = 0;    ///< edge points given to the circle finder
-  double fit_rms = 0.0;           ///< [m] circle finder's fit rms (lidar) / [px] refiner rms (camera)
+  double fit_rms = 0.0;           ///< [m] rms of the circle finder's rim fit (both branches)
+  double rim_rms_px = 0.0;        ///< [px] camera: rms of the rim refinement whose centres were kept; 0 when not refined
   double hole_radius = 0.0;       ///< [m] apparent hole radius of the rim fit (real lidars see holes smaller than they are)
   int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
@@ -72,6 +73,9 @@ class L2S_EXPORT Calibrator {
   /// Every stage's parameters in one place (loaded from / saved to YAML by
   /// io::load_calibrator_params / io::save_calibrator_params).
   struct Params {
+    /// The "default" preset: Params{} and preset("default") are the same.
+    Params();
+
     // Lidar branch: pass-through, plane, discontinuities, circles.
     PassThroughFilter::Params lidar_pass_through;
     PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
@@ -92,9 +96,8 @@ class L2S_EXPORT Calibrator {
     bool refine_camera_pose = true;  ///< fit the board pose to the hole rims in both images
     BoardPoseRefiner::Params board_refiner;
     // Accumulation and registration.
-    CenterAccumulator::Params accumulator;
+    CenterAccumulator::Params accumulator;  ///< its min_frames: fewest frames with centres on each side for a result
     Registrar::Params registrar;
-    int min_frames = 1;  ///< fewest frames with centres on each side for a result, >= 1
     bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
     // The scene-level check of the result (calibration_check.hpp).
     bool check_result = true;  ///< result() checks the transform against the scene and fills Result::quality

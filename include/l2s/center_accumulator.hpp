@@ -14,6 +14,8 @@
 
 namespace l2s {
 
+/// Thread safety: add() and reset() need one thread at a time (or a lock);
+/// const functions may run concurrently with each other.
 class L2S_EXPORT CenterAccumulator {
  public:
   /// How a hole's cluster becomes one point.
@@ -69,8 +71,5 @@ class L2S_EXPORT CenterAccumulator {
   Params params_;
   std::vector<HoleCenters> frames_;  ///< as added, NaN where a centre was not finite
 };
-
-/// "TL", "TR", "BL", "BR".
-L2S_EXPORT const char* hole_name(Hole hole);
 
 }  // namespace l2s

@@ -18,6 +18,9 @@
 namespace l2s {
 
 /// Finds and labels the four holes of the board among edge points.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT CircleFinder {
  public:
   struct Params {

@@ -23,6 +23,9 @@
 namespace l2s {
 
 /// Finds the hole edges of the board along each lidar ring.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT DiscontinuityFilter {
  public:
   /// Where an edge point is placed.

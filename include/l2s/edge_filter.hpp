@@ -14,6 +14,9 @@
 
 namespace l2s {
 
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT EdgeFilter {
  public:
   /// How the 3x3 Sobel responses gx, gy (cv::Sobel on the 8-bit gray image,

@@ -18,6 +18,9 @@
 
 namespace l2s {
 
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT OccupancyEdgeFilter {
  public:
   struct Params {

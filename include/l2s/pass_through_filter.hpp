@@ -16,6 +16,9 @@ namespace l2s {
 /// Keeps the finite points inside an axis-aligned box and a range interval,
 /// both in the sensor's own frame. Returns indices, so attributes (ring,
 /// intensity, pixel) stay reachable.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT PassThroughFilter {
  public:
   struct Params {

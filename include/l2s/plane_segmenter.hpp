@@ -36,6 +36,9 @@ struct PlaneCandidate {
 };
 
 /// Finds the calibration board's plane in a lidar or stereo cloud.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT PlaneSegmenter {
  public:
   struct Params {

@@ -11,6 +11,9 @@
 
 namespace l2s {
 
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT Registrar {
  public:
   struct Params {

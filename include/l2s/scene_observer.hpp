@@ -83,6 +83,9 @@ struct L2S_EXPORT CheckFrame {
 };
 
 /// Makes the observations of one frame.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT SceneObserver {
  public:
   struct Params {

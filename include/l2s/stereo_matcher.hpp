@@ -43,6 +43,9 @@ struct DisparityMap {
 /// the same on every rig. Matches at the edge of that window (the true match
 /// lies outside it: SGBM clamps), or failing SGBM's left-right or uniqueness
 /// checks, give no point.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT StereoMatcher {
  public:
   /// Cost aggregation paths of SGBM: 5 (single pass), 8 (two passes, slow),

@@ -21,6 +21,9 @@ namespace l2s {
 /// camera (R the identity, P its new camera matrix) that is undistortion.
 /// The remap tables are built once at construction; rectify() is a bilinear
 /// lookup per pixel.
+/// Thread safety: holds only what it was built with; its const functions may
+/// run concurrently on one instance, and each call is deterministic (random
+/// draws are seeded per call from the params).
 class L2S_EXPORT CameraRectifier {
  public:
   /// Throws ParamError naming `name` and the field: a distortion model other
@@ -64,6 +67,7 @@ struct RectifiedPair {
 };
 
 /// A raw stereo pair into the rectified images of its P's.
+/// Thread safety: as CameraRectifier.
 class L2S_EXPORT StereoRectifier {
  public:
   /// Throws ParamError as CameraRectifier does (naming "left" or "right"),

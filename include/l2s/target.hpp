@@ -12,6 +12,9 @@ namespace l2s {
 /// Index of a hole in every array of four centres: the paper's labels.
 enum class Hole { TopLeft = 0, TopRight = 1, BottomLeft = 2, BottomRight = 3 };
 
+/// The short label of a hole, as in result files and drawings: "TL", "TR", "BL", "BR".
+L2S_EXPORT const char* hole_name(Hole hole);
+
 /// Geometry of the board (DATASET.md, target.yaml). The board frame has its
 /// origin at the centre of the front face, x to the right and y up as seen
 /// from the sensors, z out of the front face; the solid spans z in [-t, 0].

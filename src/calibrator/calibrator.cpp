@@ -128,7 +128,7 @@ struct Calibrator::Impl {
       lidar_accumulated.add(partial->centers);
       ++result.lidar_frames;
     }
-    const int needed = params.min_frames;
+    const int needed = params.accumulator.min_frames;
     if (result.lidar_frames < needed || result.camera_frames < needed) {
       std::ostringstream reason;
       if (result.lidar_frames == 0 && result.camera_frames == 0)

@@ -21,11 +21,11 @@ void validate_field(const std::string& prefix, const std::function<void()>& vali
 
 }  // namespace
 
-Calibrator::Params Calibrator::Params::preset(const std::string& name) {
-  Params params;
+// The "default" preset: the stages' own defaults, and these.
+Calibrator::Params::Params() {
   // The board is within a few metres of both sensors; far returns only slow the search.
-  params.lidar_pass_through.max_range = 10.0;
-  params.camera_pass_through.max_range = 10.0;
+  lidar_pass_through.max_range = 10.0;
+  camera_pass_through.max_range = 10.0;
   // SGM on every other row: half the cost of the matching and of every later
   // stage, for a 10 Hz sensor. Rows only: at half resolution in both axes
   // SGBM's sub-pixel disparity locks to whole half-resolution pixels, so a
@@ -33,17 +33,21 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   // the 1 cm RANSAC consensus cuts it into board-sized strips (settings 3 and
   // 5 lost half their frames). Averaging rows keeps the disparity resolution
   // and lowers the noise of the board plane (rms 6 vs 10 mm at 3.6 m).
-  if (name == "default") {
-    params.stereo.row_downscale = 0.5;
-    // A 64-beam sweep gives dozens of edge points per hole, hence many circle
-    // candidates; 16 lost the true ones when a hole is cut by the top beam.
-    params.lidar_circles.max_candidates = 32;
-    return params;
-  }
+  stereo.row_downscale = 0.5;
+  // A 64-beam sweep gives dozens of edge points per hole, hence many circle
+  // candidates; 16 lost the true ones when a hole is cut by the top beam.
+  lidar_circles.max_candidates = 32;
+}
+
+Calibrator::Params Calibrator::Params::preset(const std::string& name) {
+  if (name == "default") return Params();
   if (name != "paper") throw ParamError("preset", "unknown preset '" + name + "' (expected default or paper)");
 
   // Sec. IV-B: delta_plane 1 cm, delta_inliers 5 cm (lidar) / 10 cm (camera),
   // delta_discont 50 cm, delta_cluster 2 cm, tau_sobel 128, alpha_plane 0.55 rad.
+  // The pass-through range of the default preset stays (the paper's boxes are per setting).
+  Params params;
+  params.stereo.row_downscale = 1.0;  // SGM on every row
   params.lidar_plane = PlaneSegmenter::Params::lidar();
   params.lidar_plane.distance_threshold = 0.01;
   params.lidar_plane.inlier_threshold = 0.05;
@@ -80,7 +84,6 @@ void Calibrator::Params::validate() const {
   validate_field("board_refiner", [&] { board_refiner.validate(); });
   validate_field("accumulator", [&] { accumulator.validate(); });
   validate_field("registrar", [&] { registrar.validate(); });
-  if (min_frames < 1) throw ParamError("min_frames", "must be >= 1");
   if (ring_free_frames < 1) throw ParamError("ring_free_frames", "must be >= 1");
   if (check_frames < 1) throw ParamError("check_frames", "must be >= 1");
   validate_field("observer", [&] { observer.validate(); });

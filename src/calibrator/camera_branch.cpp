@@ -210,7 +210,7 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
   if (!attempt.refined) return;
   if (attempt.refined->converged) {
     report.centers = attempt.refined->centers;
-    report.fit_rms = attempt.refined->rms_px;
+    report.rim_rms_px = attempt.refined->rms_px;
   } else {
     report.note = "rim refinement did not converge (" + attempt.refined->reason + "); stereo circles kept";
   }

@@ -18,7 +18,6 @@
 namespace l2s {
 namespace {
 
-constexpr const char* kHoleLabels[4] = {"TL", "TR", "BL", "BR"};
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -161,7 +160,7 @@ void describe_circles(std::string& out, const std::optional<CircleFinder::Result
     const Eigen::Vector2d q = frame.to_plane(r.candidates[i].center);
     std::string label;
     for (int h = 0; h < 4; ++h)
-      if (r.matched[h] == static_cast<int>(i)) label = std::string("-> ") + kHoleLabels[h];
+      if (r.matched[h] == static_cast<int>(i)) label = std::string("-> ") + hole_name(static_cast<Hole>(h));
     append(out, "    #%-2zu  u %+7.3f  v %+7.3f m  r %.3f m  support %3zu  %s\n", i, q.x(), q.y(),
            r.candidates[i].radius,
            i < r.candidate_points.size() ? r.candidate_points[i] : std::size_t{0}, label.c_str());
@@ -173,7 +172,7 @@ void describe_centers(std::string& out, const BranchReport& report, const char* 
   append(out, "  centres [m, %s]\n", frame_name);
   for (int h = 0; h < 4; ++h) {
     const Eigen::Vector3d& c = report.centers[h];
-    append(out, "    %s  (%8.4f, %8.4f, %8.4f)\n", kHoleLabels[h], c.x(), c.y(), c.z());
+    append(out, "    %s  (%8.4f, %8.4f, %8.4f)\n", hole_name(static_cast<Hole>(h)), c.x(), c.y(), c.z());
   }
 }
 

@@ -241,7 +241,6 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("board_refiner", [&](V& s) { visit(s, p.board_refiner); });
   v.section("accumulator", [&](V& s) { visit(s, p.accumulator); });
   v.section("registrar", [&](V& s) { visit(s, p.registrar); });
-  v.field("min_frames", p.min_frames);
   v.field("parallel_branches", p.parallel_branches);
   v.field("check_result", p.check_result);
   v.field("check_frames", p.check_frames);

@@ -12,7 +12,7 @@ Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
   return {roll, pitch, yaw};
 }
 
-Eigen::Isometry3d pose_from_ypr(double yaw, double pitch, double roll, const Eigen::Vector3d& t) {
+Eigen::Isometry3d pose_from_roll_pitch_yaw(double roll, double pitch, double yaw, const Eigen::Vector3d& t) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
                 Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *

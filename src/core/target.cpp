@@ -6,6 +6,16 @@
 
 namespace l2s {
 
+const char* hole_name(Hole hole) {
+  switch (hole) {
+    case Hole::TopLeft: return "TL";
+    case Hole::TopRight: return "TR";
+    case Hole::BottomLeft: return "BL";
+    case Hole::BottomRight: return "BR";
+  }
+  return "?";
+}
+
 Target Target::paper2017() {
   Target target;
   target.board_width = 1.2;

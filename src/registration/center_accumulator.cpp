@@ -96,16 +96,6 @@ std::size_t reference_frame(const std::vector<HoleCenters>& frames, double toler
 
 }  // namespace
 
-const char* hole_name(Hole hole) {
-  switch (hole) {
-    case Hole::TopLeft: return "TL";
-    case Hole::TopRight: return "TR";
-    case Hole::BottomLeft: return "BL";
-    case Hole::BottomRight: return "BR";
-  }
-  return "?";
-}
-
 void CenterAccumulator::Params::validate() const {
   if (!(cluster_tolerance > 0.0)) throw ParamError("cluster_tolerance", "must be > 0");
   if (!(min_cluster_fraction > 0.0 && min_cluster_fraction <= 1.0))

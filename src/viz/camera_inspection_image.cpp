@@ -155,7 +155,7 @@ Image render_camera_inspection(const Image& given_left, const CameraInspection& 
       if (top.allFinite() && !matched)
         text(canvas, "#" + std::to_string(i), pixel(top) + cv::Point(-8, -4), kCandidate, 0.4, 1);
     }
-  for (const auto& [h, at] : labels) text(canvas, kHoleLabels[h], at, kHole, 0.7, 2);
+  for (const auto& [h, at] : labels) text(canvas, hole_name(static_cast<Hole>(h)), at, kHole, 0.7, 2);
 
   std::vector<std::pair<std::string, cv::Scalar>> items = {{"board-plane points", kBoard},
                                                            {"edge points", kEdge},

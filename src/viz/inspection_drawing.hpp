@@ -14,8 +14,6 @@
 
 namespace l2s::detail {
 
-inline constexpr const char* kHoleLabels[4] = {"TL", "TR", "BL", "BR"};
-
 // BGR colours, one meaning each in both pictures.
 inline const cv::Scalar kBoard(230, 160, 60);     // board-plane points (blue)
 inline const cv::Scalar kEdge(0, 230, 255);       // edge points (yellow)

@@ -218,7 +218,7 @@ cv::Mat board_plane_panel(const LidarInspection& in, const Target& target, int s
       const int radius = static_cast<int>(std::lround(target.hole_radius * view.scale));
       cv::circle(panel, c, radius, kHole, 2, cv::LINE_AA);
       draw_cross(panel, c, 6, kHole, 2);
-      text(panel, kHoleLabels[h], c + cv::Point(-10, -radius - 6), kHole, 0.6, 2);
+      text(panel, hole_name(static_cast<Hole>(h)), c + cv::Point(-10, -radius - 6), kHole, 0.6, 2);
     }
   text(panel, "in the board plane, seen from the lidar (u right, v up)", {8, 18}, kText, 0.5, 1);
   scale_bar(panel, view, 0.5, "0.5 m");

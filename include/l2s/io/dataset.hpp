@@ -32,6 +32,7 @@ struct Frame {
 
 /// Read access to a dataset folder. Opening reads the YAML files and lists the
 /// frames; frames are loaded one at a time so that long recordings stream.
+/// Thread safety: const functions (frame loading included) may run concurrently.
 class L2S_EXPORT Dataset {
  public:
   /// Throws FileError naming the file and the problem: missing folder or
@@ -84,6 +85,7 @@ class L2S_EXPORT Dataset {
 /// Writes a dataset folder: creates it and its sub-folders, writes the camera
 /// and target YAMLs at construction, then frames one at a time. Every file is
 /// written atomically, and the result passes Dataset::open and check_dataset.py.
+/// Thread safety: one thread at a time per writer.
 class L2S_EXPORT DatasetWriter {
  public:
   /// Writes dataset.yaml (images: raw) for raw cameras; rectified ones need
