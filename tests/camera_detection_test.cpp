@@ -112,5 +112,32 @@ TEST(CameraDetection, ABoardSizedPanelWithoutHolesBeforeTheBoardLoses) {
   expect_found_in_every_frame(simulator, 0.01);
 }
 
+// The coarse pass cuts a board over a plain wall into several patches (paper
+// setting 1: the board and pieces of it). Once one of them gave the board's
+// holes, the others lie on that board and are skipped, not matched again at
+// full resolution: each would cost the region's SGBM and every later stage.
+TEST(CameraDetection, PiecesOfABoardAlreadyFoundAreNotTriedAgain) {
+  auto config = sim::SimulationConfig::paper(1, "vlp16");
+  config.frames = 1;
+  config.seed = 11;
+  const sim::DatasetSimulator simulator(config);
+  const auto params = Calibrator::Params::preset("default");
+  const auto frame = simulator.frame(0);
+  const CameraInspection in = inspect_camera(frame.left, frame.right, simulator.cameras(), config.target, params);
+  ASSERT_TRUE(in.report.found) << describe(in, params, simulator.cameras());
+  EXPECT_LT(centre_error(in.report.centers, true_centers(simulator)), 0.01);
+  int matched = 0, duplicates = 0;
+  for (const BoardHypothesis& h : in.hypotheses) {
+    if (h.stage == "duplicate") {
+      ++duplicates;
+      EXPECT_NE(h.reason.find("already found on plane #"), std::string::npos) << h.reason;
+    } else {
+      ++matched;
+    }
+  }
+  EXPECT_EQ(matched, 1) << describe(in, params, simulator.cameras());
+  EXPECT_GE(duplicates, 1) << describe(in, params, simulator.cameras());
+}
+
 }  // namespace
 }  // namespace l2s

@@ -71,10 +71,15 @@ class CameraHypothesisTester {
   std::optional<CameraAttempt> operator()(BoardHypothesis& hypothesis) {
     CameraAttempt attempt;
     attempt.candidate = hypothesis.candidate;
+    if (const int same = board_already_tried(attempt.candidate); same >= 0) {
+      stop(hypothesis, "duplicate", "a piece of the board already found on plane #" + std::to_string(same));
+      return std::nullopt;
+    }
     const bool ok = collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis);
     if (!first_) first_ = attempt;
     if (!ok) return std::nullopt;
     attempt.T_camera_board = board_pose_from_centers(attempt.circles.centers, attempt.plane);
+    boards_found_.push_back({attempt.candidate, attempt.T_camera_board});
     hypothesis.evidence = stereo_evidence(f_.left_gray, f_.right_gray, f_.cameras, attempt.T_camera_board,
                                           f_.target, f_.params.camera_verifier);
     hypothesis.evidence.fit_rms = attempt.circles.rms;
@@ -96,6 +101,32 @@ class CameraHypothesisTester {
     hypothesis.stage = stage;
     hypothesis.reason = reason;
     return false;
+  }
+
+  /// The candidate whose holes were already found on a board that this
+  /// candidate's patch lies on (same place, same facing), or -1. The coarse
+  /// pass often cuts one board into several patches; each would cost a
+  /// region's full-resolution matching and every later stage, and end on the
+  /// same board.
+  int board_already_tried(int candidate) const {
+    if (boards_found_.empty()) return -1;
+    const PlaneCandidate& patch = planes_.candidates[candidate];
+    const StereoCloud& cloud = located_ ? located_->cloud : *full_cloud_;
+    if (patch.inliers.empty()) return -1;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (std::size_t i : patch.inliers) centroid += cloud.points[i];
+    centroid /= static_cast<double>(patch.inliers.size());
+    const double max_tilt = std::cos(20.0 * M_PI / 180.0);
+    const double depth_band = std::max(0.05, 2.0 * f_.params.camera_plane.inlier_threshold);
+    for (const auto& [tried, T_camera_board] : boards_found_) {
+      const Eigen::Vector3d on_board = T_camera_board.inverse() * centroid;
+      const bool inside = std::abs(on_board.x()) <= 0.5 * f_.target.board_width &&
+                          std::abs(on_board.y()) <= 0.5 * f_.target.board_height &&
+                          std::abs(on_board.z()) <= depth_band;
+      const bool facing = std::abs(patch.plane.normal().dot(T_camera_board.linear().col(2))) >= max_tilt;
+      if (inside && facing) return tried;
+    }
+    return -1;
   }
 
   bool collect_board(CameraAttempt& attempt, BoardHypothesis& hypothesis) {
@@ -152,6 +183,7 @@ class CameraHypothesisTester {
   const StereoBoardLocator::Result* located_;
   const StereoCloud* full_cloud_;
   std::optional<CameraAttempt> first_;
+  std::vector<std::pair<int, Eigen::Isometry3d>> boards_found_;  ///< (candidate, T_camera_board) with four holes
 };
 
 void keep_stages(CameraInspection& t, const CameraAttempt& attempt) {
