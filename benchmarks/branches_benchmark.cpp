@@ -24,7 +24,6 @@ const char* lidar_name(int code) {
     case 64: return "hdl64";
     case 32: return "hdl32";
     case 1: return "avia";
-    case 2: return "mid360";
     default: return "vlp16";
   }
 }
@@ -106,7 +105,9 @@ void BM_LidarBranch_Sweep(benchmark::State& state) {
 BENCHMARK(BM_LidarBranch_Sweep)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// A ring-free lidar: one window of ring_free_frames sweeps (2 s at 10 Hz)
-/// accumulated and detected. Arg: 1 Avia-like, 2 Mid-360-like. Time per window.
+/// accumulated and detected, Avia-like rosette (Arg 1). Time per window. (The
+/// Mid-360's field of view starts 7 deg below its horizon: in the paper's
+/// settings it misses the board's lower holes.)
 void BM_LidarBranch_RosetteWindow(benchmark::State& state) {
   auto params = l2s::Calibrator::Params::preset("default");
   params.check_result = false;
@@ -123,7 +124,7 @@ void BM_LidarBranch_RosetteWindow(benchmark::State& state) {
   if (found == 0) state.SkipWithError("the board was not found in any window");
   state.counters["points_per_sweep"] = static_cast<double>(sweeps.front().points.size());
 }
-BENCHMARK(BM_LidarBranch_RosetteWindow)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LidarBranch_RosetteWindow)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// What `l2s detect` does with one sweep: the inspection (every stage kept),
 /// its text and the debug picture (PNG encoding not included). Arg: beams.

@@ -69,6 +69,14 @@ class L2S_EXPORT CalibrationCheck {
     double failed_outside_fraction = 0.3;   ///< >= suspect_outside_fraction
     double suspect_alignment_gain = 0.3;    ///< the best edge score of any scan beats this transform's by this share, (0, 1)
     double failed_alignment_gain = 0.6;     ///< >= suspect_alignment_gain
+    /// The misalignment and roll rules count only when the best alignment
+    /// beats this transform's edge score by this share: below it the score is
+    /// flat around the transform, and where its optimum lies is noise, [0, 1).
+    double min_misalignment_gain = 0.1;
+    /// The roll rule counts only when the roll scan peaks this clearly
+    /// (prominence): a roll moves the edges near the image centre little, so
+    /// a true one raises the score by little, but its optimum is sharp, 0..1.
+    double min_roll_prominence = 0.5;
     double suspect_depth_tilt_deg = 2.0;    ///< [deg] lidar against stereo depth off the board (coarse stereo alone tilts up to ~1.1 deg with the default preset, 1.64 deg with the paper preset on the nine settings), > 0
     double failed_depth_tilt_deg = 3.0;     ///< [deg] >= suspect_depth_tilt_deg
     double suspect_depth_bias = 0.05;   ///< lidar against stereo depth, as a share of the depth (coarse stereo alone is off by up to ~2 % far away), > 0

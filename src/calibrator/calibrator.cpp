@@ -53,6 +53,11 @@ struct Calibrator::Impl {
   SceneObserver observer;
   detail::CheckFrameKeeper check_frames;
   std::vector<LidarCloud> ring_free_window;  // ring-free sweeps waiting for a detection (pass-through applied)
+  // Ring-free lidars: the camera's view of the board from a frame of the
+  // window being accumulated. The window's detection comes with its last
+  // sweep, whose images may not show the board; the board is static over the
+  // window, so any of its frames with the board serves the check.
+  std::shared_ptr<const CameraObservation> window_camera;
 
   // The lidar branch of one sweep: at once for a ring lidar; for a ring-free
   // one, when ring_free_frames sweeps of the static board are together.
@@ -91,15 +96,22 @@ struct Calibrator::Impl {
 
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
-  // `observe` makes that, given the frame's name.
-  template <class Observe>
-  FrameReport record(FrameReport report, const std::string& id, Observe&& observe) {
+  // `observe_lidar()` and `observe_camera()` make that of this frame.
+  template <class ObserveLidar, class ObserveCamera>
+  FrameReport record(FrameReport report, const std::string& id, bool ring_free, ObserveLidar&& observe_lidar,
+                     ObserveCamera&& observe_camera) {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
     if (report.lidar.found) lidar_centers.add(report.lidar.centers);
     if (report.camera.found) camera_centers.add(report.camera.centers);
-    if (params.check_result && report.used()) {
+    std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
+    if (params.check_result && ring_free) {
+      if (report.camera.found && !window_camera) window_camera = observe_camera();
+      if (report.lidar.found && !report.camera.found) camera = window_camera;
+      if (report.lidar.failed_stage != "accumulating") window_camera.reset();  // the window is closed
+    }
+    if (params.check_result && report.lidar.found && (report.camera.found || camera)) {
       if (check_frames.wants_next())
-        check_frames.keep(observe(report.id));
+        check_frames.keep(CheckFrame{report.id, observe_lidar(), camera ? *camera : *observe_camera()});
       else
         check_frames.skip();
     }
@@ -211,14 +223,16 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
     report.lidar = lidar_branch();
     report.camera = camera_branch();
   }
-  const auto observe = [&](const std::string& name) {
-    CheckFrame frame;
-    frame.id = name;
-    frame.lidar = observe_lidar(lidar, lidar_trace, true, impl.observer);
-    frame.camera = observe_camera(left, camera_trace, true, impl.cameras, impl.observer);
-    return frame;
-  };
-  FrameReport recorded = impl_->record(std::move(report), id, observe);
+  std::shared_ptr<const CameraObservation> camera_observation;  // made once, when asked for
+  FrameReport recorded = impl_->record(
+      std::move(report), id, detail::is_ring_free(lidar),
+      [&] { return observe_lidar(lidar, lidar_trace, true, impl.observer); },
+      [&] {
+        if (!camera_observation)
+          camera_observation = std::make_shared<const CameraObservation>(
+              observe_camera(left, camera_trace, true, impl.cameras, impl.observer));
+        return camera_observation;
+      });
   recorded.milliseconds = impl_->frames.back().milliseconds = milliseconds_since(start);
   return recorded;
 }
@@ -242,14 +256,13 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera,
   report.lidar = impl_->lidar_branch(lidar, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
-  const auto observe = [&](const std::string& name) {
-    CheckFrame frame;
-    frame.id = name;
-    frame.lidar = observe_lidar(lidar, lidar_trace, true, impl_->observer);
-    frame.camera = camera.observation ? *camera.observation : observation_from_centers(camera.centers);
-    return frame;
-  };
-  return impl_->record(std::move(report), id, observe);
+  return impl_->record(
+      std::move(report), id, detail::is_ring_free(lidar),
+      [&] { return observe_lidar(lidar, lidar_trace, true, impl_->observer); },
+      [&] {
+        return camera.observation ? camera.observation
+                                  : std::make_shared<const CameraObservation>(observation_from_centers(camera.centers));
+      });
 }
 
 Calibrator::Result Calibrator::result() const {
@@ -268,6 +281,7 @@ void Calibrator::reset() {
   impl_->frames.clear();
   impl_->check_frames.reset();
   impl_->ring_free_window.clear();
+  impl_->window_camera.reset();
 }
 
 const std::vector<CheckFrame>& Calibrator::check_frames() const { return impl_->check_frames.frames(); }

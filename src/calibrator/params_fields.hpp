@@ -211,6 +211,8 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("suspect_outside_fraction", p.suspect_outside_fraction);
   v.field("failed_outside_fraction", p.failed_outside_fraction);
   v.field("suspect_alignment_gain", p.suspect_alignment_gain);
+  v.field("min_misalignment_gain", p.min_misalignment_gain);
+  v.field("min_roll_prominence", p.min_roll_prominence);
   v.field("failed_alignment_gain", p.failed_alignment_gain);
   v.field("suspect_depth_tilt_deg", p.suspect_depth_tilt_deg);
   v.field("failed_depth_tilt_deg", p.failed_depth_tilt_deg);

@@ -103,6 +103,10 @@ void CalibrationCheck::Params::validate() const {
   if (!(suspect_alignment_gain > 0.0 && suspect_alignment_gain < 1.0))
     throw ParamError("suspect_alignment_gain", "must be in (0, 1)");
   ordered(suspect_alignment_gain, failed_alignment_gain, "failed_alignment_gain");
+  if (!(min_misalignment_gain >= 0.0 && min_misalignment_gain < 1.0))
+    throw ParamError("min_misalignment_gain", "must be in [0, 1)");
+  if (!(min_roll_prominence >= 0.0 && min_roll_prominence <= 1.0))
+    throw ParamError("min_roll_prominence", "must be in [0, 1]");
   positive(suspect_depth_tilt_deg, "suspect_depth_tilt_deg");
   ordered(suspect_depth_tilt_deg, failed_depth_tilt_deg, "failed_depth_tilt_deg");
   positive(suspect_depth_bias, "suspect_depth_bias");

@@ -14,7 +14,10 @@ LidarObservation observe_lidar(const LidarCloud& sweep, const LidarInspection& i
     board.reserve(inliers.size());
     for (const std::size_t i : inliers) board.push_back(inspection.cloud.points[i]);
   }
-  LidarObservation out = observer.observe_lidar(sweep, board);
+  // A ring-free lidar's detection ran on its accumulated window: a single
+  // sweep of it holds too few depth edges (tens) to check against the image.
+  const bool window = found && inspection.ring_free && !inspection.cloud.points.empty();
+  LidarObservation out = observer.observe_lidar(window ? inspection.cloud : sweep, board);
   if (found && inspection.circles && inspection.circles->found)
     out.hole_centers.assign(inspection.circles->centers.begin(), inspection.circles->centers.end());
   return out;

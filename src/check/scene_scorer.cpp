@@ -109,12 +109,15 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
 }
 
 SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eigen::Isometry3d& T_camera_lidar) const {
-  // The stereo plane is metric by the baseline alone; the pose's plane (from
-  // the rims and the target's size) is the fallback.
+  // Depth from the stereo plane, metric by the baseline alone (a wrong
+  // target size scales the pose's depth); the pose's plane is the fallback.
+  // Orientation from the pose: fitted to the rims in both images it is
+  // tilted by tenths of a degree at most, while the stereo points of a board
+  // before a near textured background (matches fattened over its edges and
+  // into its holes) tilt their plane by degrees.
   const Eigen::Isometry3d& T_camera_board = *frame.camera.T_camera_board;
-  const Plane plane = frame.camera.stereo_plane
-                          ? *frame.camera.stereo_plane
-                          : Plane(T_camera_board.linear().col(2), T_camera_board.translation());
+  const Plane pose_plane(T_camera_board.linear().col(2), T_camera_board.translation());
+  const Plane plane = frame.camera.stereo_plane ? *frame.camera.stereo_plane : pose_plane;
   const double towards_camera = plane.offset() >= 0.0 ? 1.0 : -1.0;
   std::vector<Eigen::Vector3d> in_camera;
   std::vector<double> heights;
@@ -130,8 +133,10 @@ SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eige
   std::vector<std::size_t> all(in_camera.size());
   std::iota(all.begin(), all.end(), 0);
   Eigen::Vector3d n_lidar = fit_plane(in_camera, all).normal();
-  if (n_lidar.dot(plane.normal()) < 0.0) n_lidar = -n_lidar;
-  fit.tilt = plane.normal().cross(n_lidar);
+  Eigen::Vector3d n_camera = pose_plane.normal();
+  if (n_camera.dot(plane.normal()) < 0.0) n_camera = -n_camera;
+  if (n_lidar.dot(n_camera) < 0.0) n_lidar = -n_lidar;
+  fit.tilt = n_camera.cross(n_lidar);
   return fit;
 }
 

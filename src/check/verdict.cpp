@@ -76,16 +76,19 @@ void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Para
           format("the lidar edges align %.0f %% better with the image elsewhere (%+.2f ", 100.0 * r.alignment_gain,
                  peak.best_offset * (peak.rotation ? 1.0 / kDeg : 100.0)) +
               (peak.rotation ? "deg in " : "cm in ") + peak.name + ")");
-  j.grade(r.misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
-          format("the lidar edges align best with the image %.1f px (%.2f deg) away", r.misalignment_px,
-                 r.misalignment / kDeg));
+  const bool misalignment_counts = r.alignment_gain >= p.min_misalignment_gain;
+  if (misalignment_counts)
+    j.grade(r.misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
+            format("the lidar edges align best with the image %.1f px (%.2f deg) away", r.misalignment_px,
+                   r.misalignment / kDeg));
   j.grade(r.scene_misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
           format("the lidar edges off the board align best with the image %.2f deg away, while the board's align: "
                  "the board moved between the lidar sweep and the images (sensors not synchronised?)",
                  r.scene_misalignment / kDeg));
-  j.grade(r.peaks[2].offset, p.suspect_roll_deg * kDeg, p.failed_roll_deg * kDeg,
-          format("the lidar edges align best with the image rolled %+.2f deg about the optical axis",
-                 r.peaks[2].offset / kDeg));
+  if (r.peaks[2].prominence >= p.min_roll_prominence)
+    j.grade(r.peaks[2].offset, p.suspect_roll_deg * kDeg, p.failed_roll_deg * kDeg,
+            format("the lidar edges align best with the image rolled %+.2f deg about the optical axis",
+                   r.peaks[2].offset / kDeg));
   for (int k = 0; k < 2; ++k)
     if (r.peaks[k].prominence < p.min_prominence)
       j.suspect.push_back("the edge score has no clear optimum in " + r.peaks[k].name +
