@@ -4,7 +4,7 @@
 // returns and returns spread between the rings are doubtful.
 #include <l2s/io/ring_recovery.hpp>
 
-#include "io/ring_report.hpp"
+#include "lidar/rings/ring_report.hpp"
 #include "support/laser_sweep.hpp"
 
 #include <gtest/gtest.h>

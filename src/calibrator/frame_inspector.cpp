@@ -199,6 +199,73 @@ void describe_stereo(std::string& out, const std::optional<StereoMatcher::Result
          s.window_edge, p.block_size, p.row_downscale);
 }
 
+// The coarse pass of the board locator and the regions it chose.
+void describe_located(std::string& out, const std::optional<StereoBoardLocator::Result>& located,
+                      const StereoBoardLocator::Params& p) {
+  if (!located) return;
+  const auto& l = *located;
+  append(out,
+         "  coarse search    scale %.2f: %zu stereo points (SGBM %.0f ms), %zu after pass-through, "
+         "%zu region(s) to match at full resolution%s%s\n",
+         l.scale, l.stereo.cloud.size(), l.stereo.match_ms, l.cloud.size(), l.regions.size(),
+         l.found ? "" : ": ", l.found ? "" : l.reason.c_str());
+  for (const auto& r : l.regions)
+    append(out, "    plane #%-2d      region x %d..%d, y %d..%d px, depth %.2f..%.2f m\n", r.candidate,
+           r.roi.x, r.roi.x + r.roi.width - 1, r.roi.y, r.roi.y + r.roi.height - 1, r.min_depth, r.max_depth);
+  append(out, "                   [locator: coarse_width %.0f px, min_board_px %.0f, region_margin %.2f m, "
+         "depth_margin %.2f m]\n", p.coarse_width, p.min_board_px, p.region_margin, p.depth_margin);
+}
+
+void describe_edges(std::string& out, const std::optional<EdgeFilter::Result>& edges, const EdgeFilter::Params& p) {
+  if (!edges) return;
+  const auto& e = *edges;
+  append(out,
+         "  edges            %zu board points: %zu on image edges, %zu removed as %d border "
+         "lines -> %zu edge points%s%s\n",
+         e.input_points, e.edge_points, e.border_points, e.border_lines, e.edges.size(),
+         e.found ? "" : ": ", e.found ? "" : e.reason.c_str());
+  append(out,
+         "                   [edges: sobel_threshold %.0f, magnitude %s, remove_border_lines %s, "
+         "line_distance %.3f m, max_border_lines %d, min_line_points %d]\n",
+         p.sobel_threshold, p.magnitude == EdgeFilter::Magnitude::Hypot ? "hypot" : "half-L1",
+         yes_no(p.remove_border_lines), p.line_distance, p.max_border_lines, p.min_line_points);
+}
+
+// The rim refinement and the board pose the camera branch ended with.
+void describe_refinement(std::string& out, const CameraInspection& in, const BoardPoseRefiner::Params& p) {
+  if (in.refined) {
+    const auto& r = *in.refined;
+    if (r.converged)
+      append(out, "  rim refinement   converged: rms %.2f px over %d samples, %d rounds\n",
+             r.rms_px, r.samples, r.iterations);
+    else
+      append(out, "  rim refinement   did not converge (%s): rms %.2f px, %d samples, %d rounds\n",
+             r.reason.c_str(), r.rms_px, r.samples, r.iterations);
+    append(out,
+           "                   [board_refiner: search_range_px %.1f -> %.1f, min_edge_strength "
+           "%.1f, max_rms_px %.2f, min_samples %d]\n",
+           p.search_range_px, p.final_search_range_px, p.min_edge_strength, p.max_rms_px,
+           p.min_samples);
+    const Eigen::Isometry3d& T = r.converged ? r.T_camera_board : *in.T_camera_board_initial;
+    const Eigen::Vector3d t = T.translation();
+    const Eigen::Vector3d z = T.linear().col(2);
+    append(out, "  board pose       %s: centre (%.4f, %.4f, %.4f) m, normal (%.3f, %.3f, %.3f)\n",
+           r.converged ? "refined" : "from the stereo circles", t.x(), t.y(), t.z(), z.x(), z.y(),
+           z.z());
+  } else if (in.circles && in.circles->found) {
+    append(out,
+           "  rim refinement   off (refine_camera_pose: false); centres from the stereo circles\n");
+    if (in.T_camera_board_initial) {
+      const Eigen::Vector3d t = in.T_camera_board_initial->translation();
+      const Eigen::Vector3d z = in.T_camera_board_initial->linear().col(2);
+      append(out,
+             "  board pose       from the stereo circles: centre (%.4f, %.4f, %.4f) m, normal "
+             "(%.3f, %.3f, %.3f)\n",
+             t.x(), t.y(), t.z(), z.x(), z.y(), z.z());
+    }
+  }
+}
+
 }  // namespace
 
 LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
@@ -296,20 +363,7 @@ std::string describe(const CameraInspection& in, const Calibrator::Params& param
   describe_status(out, "camera", in.report);
   const Eigen::Vector3d up_optical(0.0, -1.0, 0.0);
 
-  if (in.located) {
-    const auto& l = *in.located;
-    append(out,
-           "  coarse search    scale %.2f: %zu stereo points (SGBM %.0f ms), %zu after pass-through, "
-           "%zu region(s) to match at full resolution%s%s\n",
-           l.scale, l.stereo.cloud.size(), l.stereo.match_ms, l.cloud.size(), l.regions.size(),
-           l.found ? "" : ": ", l.found ? "" : l.reason.c_str());
-    for (const auto& r : l.regions)
-      append(out, "    plane #%-2d      region x %d..%d, y %d..%d px, depth %.2f..%.2f m\n", r.candidate,
-             r.roi.x, r.roi.x + r.roi.width - 1, r.roi.y, r.roi.y + r.roi.height - 1, r.min_depth, r.max_depth);
-    append(out, "                   [locator: coarse_width %.0f px, min_board_px %.0f, region_margin %.2f m, "
-           "depth_margin %.2f m]\n", params.locator.coarse_width, params.locator.min_board_px,
-           params.locator.region_margin, params.locator.depth_margin);
-  }
+  describe_located(out, in.located, params.locator);
   describe_stereo(out, in.stereo, params.stereo, cameras, in.located ? "region stereo" : "stereo");
   describe_pass_through(out, in.pass_through, in.stereo ? in.stereo->cloud.size() : 0,
                         params.camera_pass_through, "camera_pass_through");
@@ -320,57 +374,13 @@ std::string describe(const CameraInspection& in, const Calibrator::Params& param
     append(out, "  (stages below ran on plane #%d, %s: %zu board-plane points at full resolution)\n",
            in.candidate, in.report.found ? "the chosen hypothesis" : "the most board-like one", in.board.size());
 
-  if (in.edges) {
-    const auto& e = *in.edges;
-    const auto& p = params.edges;
-    append(out,
-           "  edges            %zu board points: %zu on image edges, %zu removed as %d border "
-           "lines -> %zu edge points%s%s\n",
-           e.input_points, e.edge_points, e.border_points, e.border_lines, e.edges.size(),
-           e.found ? "" : ": ", e.found ? "" : e.reason.c_str());
-    append(out,
-           "                   [edges: sobel_threshold %.0f, magnitude %s, remove_border_lines %s, "
-           "line_distance %.3f m, max_border_lines %d, min_line_points %d]\n",
-           p.sobel_threshold, p.magnitude == EdgeFilter::Magnitude::Hypot ? "hypot" : "half-L1",
-           yes_no(p.remove_border_lines), p.line_distance, p.max_border_lines, p.min_line_points);
-  }
+  describe_edges(out, in.edges, params.edges);
   if (in.circles) {
     const Eigen::Vector3d centre = detail::centroid(in.board.points, {});
     describe_circles(out, in.circles, in.board_plane, up_optical, centre, params.camera_circles,
                      "camera_circles", 1e3, "mm");
   }
-  if (in.refined) {
-    const auto& r = *in.refined;
-    const auto& p = params.board_refiner;
-    if (r.converged)
-      append(out, "  rim refinement   converged: rms %.2f px over %d samples, %d rounds\n",
-             r.rms_px, r.samples, r.iterations);
-    else
-      append(out, "  rim refinement   did not converge (%s): rms %.2f px, %d samples, %d rounds\n",
-             r.reason.c_str(), r.rms_px, r.samples, r.iterations);
-    append(out,
-           "                   [board_refiner: search_range_px %.1f -> %.1f, min_edge_strength "
-           "%.1f, max_rms_px %.2f, min_samples %d]\n",
-           p.search_range_px, p.final_search_range_px, p.min_edge_strength, p.max_rms_px,
-           p.min_samples);
-    const Eigen::Isometry3d& T = r.converged ? r.T_camera_board : *in.T_camera_board_initial;
-    const Eigen::Vector3d t = T.translation();
-    const Eigen::Vector3d z = T.linear().col(2);
-    append(out, "  board pose       %s: centre (%.4f, %.4f, %.4f) m, normal (%.3f, %.3f, %.3f)\n",
-           r.converged ? "refined" : "from the stereo circles", t.x(), t.y(), t.z(), z.x(), z.y(),
-           z.z());
-  } else if (in.circles && in.circles->found) {
-    append(out,
-           "  rim refinement   off (refine_camera_pose: false); centres from the stereo circles\n");
-    if (in.T_camera_board_initial) {
-      const Eigen::Vector3d t = in.T_camera_board_initial->translation();
-      const Eigen::Vector3d z = in.T_camera_board_initial->linear().col(2);
-      append(out,
-             "  board pose       from the stereo circles: centre (%.4f, %.4f, %.4f) m, normal "
-             "(%.3f, %.3f, %.3f)\n",
-             t.x(), t.y(), t.z(), z.x(), z.y(), z.z());
-    }
-  }
+  describe_refinement(out, in, params.board_refiner);
   if (!in.report.found && in.circles && in.circles->found) {
     // A later step rejected the frame: the circles' centres still tell where the holes are.
     BranchReport circles = in.report;

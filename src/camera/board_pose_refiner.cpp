@@ -23,9 +23,12 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace l2s {
@@ -110,6 +113,410 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return m;
 }
 
+using Params = BoardPoseRefiner::Params;
+
+/// The hole rims in the board frame: each hole's front (z = 0) and back
+/// (z = -thickness) circle, sampled evenly, with the tangent at each sample.
+struct Rims {
+  std::vector<Eigen::Vector3d> points;    // [m] board frame, [hole][rim][theta]
+  std::vector<Eigen::Vector3d> tangents;  // unit, board frame
+  std::vector<int> hole;                  // the hole of each point
+  std::array<Eigen::Vector2d, 4> centers;  // [m] hole centres, board frame
+  double radius = 0.0;     // [m]
+  double thickness = 0.0;  // [m]
+};
+
+Rims rims_of(const Target& target, int samples_per_rim) {
+  Rims rims;
+  rims.radius = target.hole_radius;
+  rims.thickness = target.board_thickness;
+  rims.centers = target.hole_centers();
+  const int n = samples_per_rim;
+  for (int h = 0; h < 4; ++h)
+    for (const double z : {0.0, -rims.thickness})
+      for (int k = 0; k < n; ++k) {
+        const double a = 2.0 * M_PI * (k + 0.5) / n;
+        rims.points.emplace_back(rims.centers[h].x() + rims.radius * std::cos(a),
+                                 rims.centers[h].y() + rims.radius * std::sin(a), z);
+        rims.tangents.emplace_back(-std::sin(a), std::cos(a), 0.0);
+        rims.hole.push_back(h);
+      }
+  return rims;
+}
+
+/// The box around the rims' projection at pose T, padded by `pad` [px];
+/// empty when no rim point projects (the board is behind the camera).
+std::optional<cv::Rect> board_box(const View& view, const Rims& rims, const Eigen::Isometry3d& T, double pad) {
+  double x_min = 1e18, y_min = 1e18, x_max = -1e18, y_max = -1e18;
+  for (const auto& X : rims.points) {
+    Eigen::Vector2d u;
+    if (!view.project(T * X, u, nullptr)) continue;
+    x_min = std::min(x_min, u.x()); x_max = std::max(x_max, u.x());
+    y_min = std::min(y_min, u.y()); y_max = std::max(y_max, u.y());
+  }
+  if (x_min > x_max) return std::nullopt;
+  return cv::Rect(cv::Point(static_cast<int>(x_min - pad), static_cast<int>(y_min - pad)),
+                  cv::Point(static_cast<int>(x_max + pad), static_cast<int>(y_max + pad)));
+}
+
+/// The left view (and the right one, with use_right_image), each with the
+/// gradient of the board's neighbourhood only: the whole image's would cost
+/// more than the fit. Empty when the board is behind a camera.
+std::vector<View> views_of(const StereoCamera& camera, const Image& left, const Image& right,
+                           const cv::Mat& gray_left, const cv::Mat& gray_right, const Rims& rims,
+                           const Eigen::Isometry3d& T_camera_board, const Params& params) {
+  std::vector<View> views;
+  const double baseline = camera.baseline();
+  views.push_back({camera.left.projection_matrix, Eigen::Vector3d::Zero(), left.width, left.height, {}});
+  if (params.use_right_image)
+    views.push_back({camera.right.projection_matrix, Eigen::Vector3d(baseline, 0, 0), right.width,
+                     right.height, {}});
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const double pad = 4.0 * params.search_range_px + 20.0;  // room for the pose to move
+    const std::optional<cv::Rect> box = board_box(views[v], rims, T_camera_board, pad);
+    if (!box) return {};
+    views[v].grad = gradient_of(v == 0 ? gray_left : gray_right, *box);
+  }
+  return views;
+}
+
+/// True when the line of sight from `eye` through rim point X (board frame)
+/// passes outside the hole's other rim circle: the hole's wall hides X.
+bool hidden_by_wall(const Rims& rims, const Eigen::Vector3d& eye, const Eigen::Vector3d& X, int hole) {
+  const double other_z = X.z() == 0.0 ? -rims.thickness : 0.0;
+  const double s = (other_z - eye.z()) / (X.z() - eye.z());
+  const Eigen::Vector3d Q = eye + s * (X - eye);
+  return (Q.head<2>() - rims.centers[hole]).norm() > rims.radius;
+}
+
+/// Where a rim point projects in a view and the image normal of its rim there.
+struct RimPixel {
+  Eigen::Vector2d u;       // [px]
+  Eigen::Vector2d normal;  // unit
+};
+
+/// The search half of a round: which (view, rim point) samples are used, and
+/// where each finds its edge along the rim's normal.
+///
+/// Visibility and the separation test are decided afresh while the search
+/// range shrinks, then frozen (`locked`): samples toggling at those
+/// thresholds would otherwise keep the pose jittering by a few 1e-5 and never
+/// let the rounds settle. Once frozen, a sample that loses its edge (too
+/// weak, window clipped) is dropped for good, so the set only shrinks and
+/// cannot toggle either.
+class EdgeSearch {
+ public:
+  EdgeSearch(const Params& params, const Rims& rims, const std::vector<View>& views)
+      : params_(params), rims_(rims), views_(views), chosen_(views.size() * rims.points.size(), 0) {}
+
+  /// Fills `samples` with the edges found at pose T within +-range [px];
+  /// returns how many samples were searched (search line inside the image),
+  /// edge or not.
+  int search(const Eigen::Isometry3d& T, double range, bool locked, std::vector<Sample>& samples) {
+    steps_ = static_cast<int>(std::floor(range / params_.search_step_px));
+    profile_.assign(2 * steps_ + 1, 0.0);
+    margin_ = params_.image_margin_px + range;
+    samples.clear();
+    int searched = 0;
+    const Eigen::Isometry3d T_board_camera = T.inverse();
+    for (std::size_t v = 0; v < views_.size(); ++v) {
+      const View& view = views_[v];
+      const Eigen::Vector3d eye = T_board_camera * view.center;  // camera centre, board frame
+      if (!(eye.z() > 0.0)) continue;  // looking at the back face
+      for (std::size_t k = 0; k < rims_.points.size(); ++k) {
+        const Eigen::Vector3d& X = rims_.points[k];
+        char& use = chosen_[v * rims_.points.size() + k];
+        if (locked && !use) continue;
+        use = 0;
+        if (!locked && hidden_by_wall(rims_, eye, X, rims_.hole[k])) continue;
+        RimPixel at;
+        double along = 0.0;  // [px] edge position on the search line
+        const Outcome outcome = find_edge(view, T, k, locked, at, along);
+        if (outcome != Outcome::NotSearched) ++searched;
+        if (outcome != Outcome::Edge) continue;
+        use = 1;
+        samples.push_back({static_cast<int>(v), X, at.normal, at.u + along * at.normal});
+      }
+    }
+    return searched;
+  }
+
+ private:
+  enum class Outcome { NotSearched, NoEdge, Edge };
+
+  /// The edge of rim point k in `view` at pose T: its projection, the
+  /// search window along the normal, the gradient profile and its peak.
+  Outcome find_edge(const View& view, const Eigen::Isometry3d& T, std::size_t k, bool locked, RimPixel& at,
+                    double& along) {
+    const Eigen::Vector3d& X = rims_.points[k];
+    if (!project_rim(view, T, k, at)) return Outcome::NotSearched;
+    int lo = 0, hi = 2 * steps_;  // profile indices (offset -steps..steps)
+    if (X.z() != 0.0 && !clip_back_rim_window(view, T, X, at, locked, lo, hi)) return Outcome::NotSearched;
+    if (!sample_profile(view, at, lo, hi)) return Outcome::NotSearched;
+    return peak(lo, hi, along) ? Outcome::Edge : Outcome::NoEdge;
+  }
+
+  /// Projection and rim normal of rim point k; false when it falls outside
+  /// the image (less the margin and the search range) or the rim is seen
+  /// edge-on.
+  bool project_rim(const View& view, const Eigen::Isometry3d& T, std::size_t k, RimPixel& at) const {
+    Eigen::Matrix<double, 2, 3> J;
+    const Eigen::Vector3d p = T * rims_.points[k];
+    if (!view.project(p, at.u, &J)) return false;
+    const double m = margin_;
+    const Eigen::Vector2d& u = at.u;
+    if (u.x() < m || u.y() < m || u.x() > view.width - 1 - m || u.y() > view.height - 1 - m) return false;
+    const Eigen::Vector2d tangent = J * (T.linear() * rims_.tangents[k]);
+    if (tangent.norm() < 1e-9) return false;
+    at.normal = Eigen::Vector2d(-tangent.y() / tangent.norm(), tangent.x() / tangent.norm());
+    return true;
+  }
+
+  /// A back-rim silhouette has the hole wall beside it, bounded by the front
+  /// rim's edge (face | wall | back rim | background). When that band is
+  /// narrow both edges merge into one gradient peak whose position is
+  /// biased, differently in each view: such samples are dropped (until the
+  /// selection is locked). The face-to-wall edge is often the stronger one (a
+  /// wall in shadow is as dark as what is seen through the hole), so the
+  /// search must not reach it: the window [lo, hi] stops half a pixel short
+  /// of half-way to the front rim on that side, whatever the step (the Sobel
+  /// response of that edge is ~1.5 px wide; a window ending on its flank
+  /// finds a biased peak).
+  bool clip_back_rim_window(const View& view, const Eigen::Isometry3d& T, const Eigen::Vector3d& X,
+                            const RimPixel& at, bool locked, int& lo, int& hi) const {
+    Eigen::Vector2d u_front;
+    if (!view.project(T * Eigen::Vector3d(X.x(), X.y(), 0.0), u_front, nullptr)) return false;
+    const double separation = at.normal.dot(u_front - at.u);  // [px] signed, along the normal
+    if (!locked && std::abs(separation) < params_.min_rim_separation_px) return false;
+    const int reach = std::max(
+        1, static_cast<int>(std::floor((0.5 * std::abs(separation) - 0.5) / params_.search_step_px)));
+    if (separation > 0.0)
+      hi = std::min(hi, steps_ + reach);
+    else
+      lo = std::max(lo, steps_ - reach);
+    return true;
+  }
+
+  /// |directional gradient| along the normal at profile indices lo..hi;
+  /// false when the window leaves the gradient's crop.
+  bool sample_profile(const View& view, const RimPixel& at, int lo, int hi) {
+    const Eigen::Vector2d& u = at.u;
+    const Eigen::Vector2d& normal = at.normal;
+    bool inside = true;
+    for (int i = lo; i <= hi && inside; ++i) {
+      Eigen::Vector2d g;
+      inside = view.grad.at(u.x() + (i - steps_) * params_.search_step_px * normal.x(),
+                            u.y() + (i - steps_) * params_.search_step_px * normal.y(), g);
+      profile_[i] = std::abs(g.dot(normal));
+    }
+    return inside;
+  }
+
+  /// The profile's strongest inner peak, refined by a parabola, as a
+  /// distance along the normal [px]; false when it is too weak or the
+  /// profile still rises at a clipped end (the peak is the front rim's,
+  /// beyond).
+  bool peak(int lo, int hi, double& along) const {
+    const std::vector<double>& profile = profile_;
+    int best = lo + 1;
+    for (int i = lo + 1; i < hi; ++i)
+      if (profile[i] > profile[best]) best = i;
+    if (profile[best] < params_.min_edge_strength) return false;
+    if ((lo > 0 && profile[lo] > profile[best]) || (hi < 2 * steps_ && profile[hi] > profile[best])) return false;
+    const double a = profile[best - 1], b = profile[best], c = profile[best + 1];
+    const double denom = a - 2.0 * b + c;
+    const double offset = denom < 0.0 ? 0.5 * (a - c) / denom : 0.0;
+    along = (best - steps_ + offset) * params_.search_step_px;
+    return true;
+  }
+
+  const Params& params_;
+  const Rims& rims_;
+  const std::vector<View>& views_;
+  std::vector<char> chosen_;     // [view][rim point]: used in the last round
+  std::vector<double> profile_;  // gradient along the current search line
+  int steps_ = 0;                // search steps on each side of the rim
+  double margin_ = 0.0;          // [px] from the image border, search range included
+};
+
+/// One left se(3) increment of T: rotation w [rad] about the camera origin, then translation v [m].
+Eigen::Isometry3d apply_increment(const Eigen::Isometry3d& T, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
+  const Eigen::Matrix3d R_delta =
+      w.norm() > 0.0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                     : Eigen::Matrix3d::Identity();
+  Eigen::Isometry3d next = Eigen::Isometry3d::Identity();
+  next.linear() = R_delta * T.linear();
+  next.translation() = R_delta * T.translation() + v;
+  return next;
+}
+
+/// The Gauss-Newton increment (v, omega) for the signed normal distances of
+/// the samples at pose T, Huber-weighted; `rms_px` gets their rms.
+Eigen::Matrix<double, 6, 1> gauss_newton_delta(const std::vector<Sample>& samples, const std::vector<View>& views,
+                                               const Eigen::Isometry3d& T, double huber_px, double& rms_px) {
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+  double sum_sq = 0.0, sum_w = 0.0;
+  for (const Sample& sample : samples) {
+    const Eigen::Vector3d p = T * sample.X_board;
+    Eigen::Vector2d u;
+    Eigen::Matrix<double, 2, 3> J;
+    if (!views[sample.view].project(p, u, &J)) continue;
+    const double residual = sample.normal.dot(u - sample.observed);
+    Eigen::Matrix<double, 3, 6> dp;  // d(exp(delta) p) / d(v, omega) at 0
+    dp << Eigen::Matrix3d::Identity(), -skew(p);
+    const Eigen::Matrix<double, 1, 6> row = sample.normal.transpose() * J * dp;
+    const double w = std::abs(residual) <= huber_px ? 1.0 : huber_px / std::abs(residual);
+    H += w * row.transpose() * row;
+    g += w * row.transpose() * residual;
+    sum_sq += residual * residual;
+    sum_w += 1.0;
+  }
+  rms_px = std::sqrt(sum_sq / std::max(sum_w, 1.0));
+  H.diagonal() *= 1.0 + 1e-9;  // keeps LDLT well defined if an axis is barely observed
+  return -H.ldlt().solve(g);
+}
+
+/// How far one round moved the pose.
+struct RoundMotion {
+  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();     // [rad] sum of the steps' omega
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  // [m] sum of the steps' v
+};
+
+/// The fit half of a round: Gauss-Newton steps with the found edges held
+/// fixed. Moves T; false when an update is not finite (T is then the pose
+/// before that step).
+bool fit_pose(const std::vector<Sample>& samples, const std::vector<View>& views, const Params& params,
+              Eigen::Isometry3d& T, RoundMotion& motion, double& rms_px) {
+  for (int step = 0; step < params.gauss_newton_steps; ++step) {
+    const Eigen::Matrix<double, 6, 1> delta = gauss_newton_delta(samples, views, T, params.huber_px, rms_px);
+    if (!delta.allFinite()) return false;
+    const Eigen::Vector3d v = delta.head<3>(), w = delta.tail<3>();
+    T = apply_increment(T, v, w);
+    motion.rotation += w;
+    motion.translation += v;
+  }
+  return true;
+}
+
+/// [px] largest image motion of a used sample between two poses.
+double largest_image_step(const std::vector<Sample>& samples, const std::vector<View>& views,
+                          const Eigen::Isometry3d& T_before, const Eigen::Isometry3d& T_after) {
+  double step_px = 0.0;
+  for (const Sample& sample : samples) {
+    Eigen::Vector2d before, after;
+    if (views[sample.view].project(T_before * sample.X_board, before, nullptr) &&
+        views[sample.view].project(T_after * sample.X_board, after, nullptr))
+      step_px = std::max(step_px, (after - before).norm());
+  }
+  return step_px;
+}
+
+/// Why the refinement is not trusted, empty when it is.
+std::string failure_reason(const BoardPoseRefiner::Result& result, bool settled, const Params& params) {
+  std::ostringstream reason;
+  if (!settled) {
+    reason << "not converged after " << result.iterations << " rounds (last step " << result.last_step_px
+           << " px, rms " << result.rms_px << " px, " << std::lround(100.0 * result.edge_fraction)
+           << "% of rim samples on an edge)";
+  } else if (result.rms_px > params.max_rms_px) {
+    reason << "edge rms " << result.rms_px << " px exceeds " << params.max_rms_px << " px";
+  }
+  return reason.str();
+}
+
+std::string too_few_samples(int samples, int min_samples) {
+  std::ostringstream reason;
+  reason << "only " << samples << " rim edge samples found (need " << min_samples << ")";
+  return reason.str();
+}
+
+/// The second convergence test. The se(3) test (converged_rotation,
+/// converged_translation) is strict: the edge positions are re-sampled each
+/// round, so their sub-pixel interpolation bias moves with the pose and the
+/// rounds often settle by a slowly damped oscillation (a few 1e-4 rad about
+/// the camera, i.e. ~0.01 px on the rims, at rms ~0.08 px) that the round
+/// limit cuts off. What matters is how far the round moved the rims in the
+/// images: once that step is shrinking and a small fraction of the edge
+/// noise (rms), further rounds cannot change the pose beyond its own
+/// uncertainty. Only with the final search range (selection locked), and
+/// only when most searched rim samples found a strong edge: on an image
+/// without the board, wall texture yields some edges that a pose can
+/// settle on too, but not along most of the rims.
+bool settled_in_image(double step_px, double previous_step_px, bool locked, const BoardPoseRefiner::Result& result,
+                      const Params& params) {
+  return locked && step_px < previous_step_px && step_px <= params.converged_step_rms_fraction * result.rms_px &&
+         result.edge_fraction >= params.min_edge_fraction;
+}
+
+/// The search-and-fit rounds from an initial pose. The search range halves
+/// each round down to the final one, which then locks the sample selection
+/// (EdgeSearch).
+class Alignment {
+ public:
+  Alignment(const Params& params, const Rims& rims, const std::vector<View>& views)
+      : params_(params), rims_(rims), views_(views), edges_(params, rims, views) {}
+
+  /// Fills `result` (reason empty: converged) with the pose the rounds end at.
+  void run(const Eigen::Isometry3d& T_camera_board, BoardPoseRefiner::Result& result) {
+    Eigen::Isometry3d T = T_camera_board;
+    for (int round = 0; round < params_.max_iterations && !settled_; ++round)
+      if (!run_round(round, T, result)) {
+        result.T_camera_board = T;
+        return;
+      }
+    result.T_camera_board = T;
+    for (int h = 0; h < 4; ++h)
+      result.centers[h] = T * Eigen::Vector3d(rims_.centers[h].x(), rims_.centers[h].y(), 0.0);
+    result.reason = failure_reason(result, settled_, params_);
+  }
+
+ private:
+  /// One search and fit; false when the round fails (result.reason says why).
+  bool run_round(int round, Eigen::Isometry3d& T, BoardPoseRefiner::Result& result) {
+    result.iterations = round + 1;
+    const double range = std::max(params_.final_search_range_px, params_.search_range_px / (1 << std::min(round, 20)));
+    const bool locked = lock_selection_;
+    lock_selection_ = range <= params_.final_search_range_px;
+    const int searched = edges_.search(T, range, locked, samples_);
+    result.samples = static_cast<int>(samples_.size());
+    // Share of the rim that shows an edge. Once the selection is locked, the
+    // samples that found no edge are no longer searched, so the base stays the
+    // count of the round that chose them.
+    if (!locked) searched_at_selection_ = searched;
+    result.edge_fraction =
+        searched_at_selection_ > 0 ? static_cast<double>(result.samples) / searched_at_selection_ : 0.0;
+    if (result.samples < params_.min_samples) {
+      result.reason = too_few_samples(result.samples, params_.min_samples);
+      return false;
+    }
+
+    const Eigen::Isometry3d T_round_start = T;
+    RoundMotion motion;
+    if (!fit_pose(samples_, views_, params_, T, motion, result.rms_px)) {
+      result.reason = "pose update is not finite (degenerate rim samples)";
+      return false;
+    }
+    settled_ = motion.rotation.norm() < params_.converged_rotation &&
+               motion.translation.norm() < params_.converged_translation;
+    const double step_px = largest_image_step(samples_, views_, T_round_start, T);
+    if (!settled_ && settled_in_image(step_px, previous_step_px_, locked, result, params_)) settled_ = true;
+    previous_step_px_ = step_px;
+    result.last_step_px = step_px;
+    return true;
+  }
+
+  const Params& params_;
+  const Rims& rims_;
+  const std::vector<View>& views_;
+  EdgeSearch edges_;
+  std::vector<Sample> samples_;  // the last round's edges
+  bool settled_ = false;
+  bool lock_selection_ = false;  // the next round keeps this round's sample selection
+  double previous_step_px_ = std::numeric_limits<double>::infinity();
+  int searched_at_selection_ = 0;  // samples searched in the round that chose the selection
+};
+
 }  // namespace
 
 void BoardPoseRefiner::Params::validate() const {
@@ -149,239 +556,14 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
     result.reason = "initial pose is not finite";
     return result;
   }
-
-  const double r = target.hole_radius, thickness = target.board_thickness;
-  const auto holes = target.hole_centers();
-  const int n = params_.samples_per_rim;
-  std::vector<Eigen::Vector3d> rim_points;  // board frame, [hole][rim][theta]
-  std::vector<Eigen::Vector3d> rim_tangents;
-  std::vector<int> rim_hole;
-  for (int h = 0; h < 4; ++h)
-    for (const double z : {0.0, -thickness})
-      for (int k = 0; k < n; ++k) {
-        const double a = 2.0 * M_PI * (k + 0.5) / n;
-        rim_points.emplace_back(holes[h].x() + r * std::cos(a), holes[h].y() + r * std::sin(a), z);
-        rim_tangents.emplace_back(-std::sin(a), std::cos(a), 0.0);
-        rim_hole.push_back(h);
-      }
-
-  // Views, each with the gradient of the board's neighbourhood only.
-  std::vector<View> views;
-  const double baseline = camera.baseline();
-  views.push_back({camera.left.projection_matrix, Eigen::Vector3d::Zero(), left.width, left.height, {}});
-  if (params_.use_right_image)
-    views.push_back({camera.right.projection_matrix, Eigen::Vector3d(baseline, 0, 0), right.width,
-                     right.height, {}});
-  for (std::size_t v = 0; v < views.size(); ++v) {
-    double x_min = 1e18, y_min = 1e18, x_max = -1e18, y_max = -1e18;
-    for (const auto& X : rim_points) {
-      Eigen::Vector2d u;
-      if (!views[v].project(T_camera_board * X, u, nullptr)) continue;
-      x_min = std::min(x_min, u.x()); x_max = std::max(x_max, u.x());
-      y_min = std::min(y_min, u.y()); y_max = std::max(y_max, u.y());
-    }
-    if (x_min > x_max) {
-      result.reason = "the board is behind a camera";
-      return result;
-    }
-    const double pad = 4.0 * params_.search_range_px + 20.0;  // room for the pose to move
-    const cv::Rect box(cv::Point(static_cast<int>(x_min - pad), static_cast<int>(y_min - pad)),
-                       cv::Point(static_cast<int>(x_max + pad), static_cast<int>(y_max + pad)));
-    views[v].grad = gradient_of(v == 0 ? gray_left : gray_right, box);
+  const Rims rims = rims_of(target, params_.samples_per_rim);
+  const std::vector<View> views =
+      views_of(camera, left, right, gray_left, gray_right, rims, T_camera_board, params_);
+  if (views.empty()) {
+    result.reason = "the board is behind a camera";
+    return result;
   }
-
-  Eigen::Isometry3d T = T_camera_board;
-  std::vector<Sample> samples;
-  std::vector<double> profile;
-  bool settled = false;
-  double previous_step_px = std::numeric_limits<double>::infinity();
-  int searched_at_selection = 0;
-  // Which (view, rim point) samples are used. Visibility and the separation
-  // test are decided afresh while the search range shrinks, then frozen:
-  // samples toggling at those thresholds would otherwise keep the pose
-  // jittering by a few 1e-5 and never let the rounds settle. Once frozen, a
-  // sample that loses its edge (too weak, window clipped) is dropped for good,
-  // so the set only shrinks and cannot toggle either.
-  std::vector<char> chosen(views.size() * rim_points.size(), 0);
-  bool lock_selection = false;
-  for (int round = 0; round < params_.max_iterations && !settled; ++round) {
-    result.iterations = round + 1;
-    const double range = std::max(params_.final_search_range_px, params_.search_range_px / (1 << std::min(round, 20)));
-    const int steps = static_cast<int>(std::floor(range / params_.search_step_px));
-    profile.assign(2 * steps + 1, 0.0);
-    const bool locked = lock_selection;
-    lock_selection = range <= params_.final_search_range_px;
-    // Search: visible silhouette samples and their edges.
-    samples.clear();
-    int searched = 0;  // samples whose search line was inside the image, edge or not
-    const Eigen::Isometry3d T_board_camera = T.inverse();
-    for (std::size_t v = 0; v < views.size(); ++v) {
-      const View& view = views[v];
-      const Eigen::Vector3d eye = T_board_camera * view.center;  // camera centre, board frame
-      if (!(eye.z() > 0.0)) continue;  // looking at the back face
-      for (std::size_t k = 0; k < rim_points.size(); ++k) {
-        const Eigen::Vector3d& X = rim_points[k];
-        char& use = chosen[v * rim_points.size() + k];
-        if (locked && !use) continue;
-        use = 0;
-        if (!locked) {
-          // The line of sight through X must pass inside the other rim circle.
-          const double other_z = X.z() == 0.0 ? -thickness : 0.0;
-          const double s = (other_z - eye.z()) / (X.z() - eye.z());
-          const Eigen::Vector3d Q = eye + s * (X - eye);
-          if ((Q.head<2>() - holes[rim_hole[k]]).norm() > r) continue;
-        }
-        Eigen::Vector2d u;
-        Eigen::Matrix<double, 2, 3> J;
-        const Eigen::Vector3d p = T * X;
-        if (!view.project(p, u, &J)) continue;
-        const double m = params_.image_margin_px + range;
-        if (u.x() < m || u.y() < m || u.x() > view.width - 1 - m || u.y() > view.height - 1 - m) continue;
-        const Eigen::Vector2d tangent = J * (T.linear() * rim_tangents[k]);
-        if (tangent.norm() < 1e-9) continue;
-        const Eigen::Vector2d normal(-tangent.y() / tangent.norm(), tangent.x() / tangent.norm());
-        // Search window, profile indices lo..hi (offset -steps..steps).
-        int lo = 0, hi = 2 * steps;
-        if (X.z() != 0.0) {
-          // A back-rim silhouette has the hole wall beside it, bounded by the
-          // front rim's edge (face | wall | back rim | background). When that
-          // band is narrow both edges merge into one gradient peak whose
-          // position is biased, differently in each view.
-          Eigen::Vector2d u_front;
-          if (!view.project(T * Eigen::Vector3d(X.x(), X.y(), 0.0), u_front, nullptr)) continue;
-          const double separation = normal.dot(u_front - u);  // [px] signed, along the normal
-          if (!locked && std::abs(separation) < params_.min_rim_separation_px) continue;
-          // The face-to-wall edge is often the stronger one (a wall in shadow
-          // is as dark as what is seen through the hole), so the search must
-          // not reach it: stop half a pixel short of half-way to the front rim
-          // on that side, whatever the step (the Sobel response of that edge
-          // is ~1.5 px wide; a window ending on its flank finds a biased peak).
-          const int reach = std::max(
-              1, static_cast<int>(std::floor((0.5 * std::abs(separation) - 0.5) / params_.search_step_px)));
-          if (separation > 0.0)
-            hi = std::min(hi, steps + reach);
-          else
-            lo = std::max(lo, steps - reach);
-        }
-        bool inside = true;
-        for (int i = lo; i <= hi && inside; ++i) {
-          Eigen::Vector2d g;
-          inside = view.grad.at(u.x() + (i - steps) * params_.search_step_px * normal.x(),
-                                u.y() + (i - steps) * params_.search_step_px * normal.y(), g);
-          profile[i] = std::abs(g.dot(normal));
-        }
-        if (!inside) continue;
-        ++searched;
-        int best = lo + 1;
-        for (int i = lo + 1; i < hi; ++i)
-          if (profile[i] > profile[best]) best = i;
-        if (profile[best] < params_.min_edge_strength) continue;
-        // Still rising at a clipped end: the peak is the front rim's, beyond.
-        if ((lo > 0 && profile[lo] > profile[best]) || (hi < 2 * steps && profile[hi] > profile[best])) continue;
-        const double a = profile[best - 1], b = profile[best], c = profile[best + 1];
-        const double denom = a - 2.0 * b + c;
-        const double offset = denom < 0.0 ? 0.5 * (a - c) / denom : 0.0;
-        const double along = (best - steps + offset) * params_.search_step_px;
-        use = 1;
-        samples.push_back({static_cast<int>(v), X, normal, u + along * normal});
-      }
-    }
-    result.samples = static_cast<int>(samples.size());
-    // Share of the rim that shows an edge. Once the selection is locked, the
-    // samples that found no edge are no longer searched, so the base stays the
-    // count of the round that chose them.
-    if (!locked) searched_at_selection = searched;
-    result.edge_fraction =
-        searched_at_selection > 0 ? static_cast<double>(result.samples) / searched_at_selection : 0.0;
-    if (result.samples < params_.min_samples) {
-      std::ostringstream reason;
-      reason << "only " << result.samples << " rim edge samples found (need " << params_.min_samples << ")";
-      result.reason = reason.str();
-      result.T_camera_board = T;
-      return result;
-    }
-
-    // Fit: Gauss-Newton with the found edges held fixed.
-    const Eigen::Isometry3d T_round_start = T;
-    Eigen::Vector3d round_rotation = Eigen::Vector3d::Zero(), round_translation = Eigen::Vector3d::Zero();
-    for (int step = 0; step < params_.gauss_newton_steps; ++step) {
-      Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-      Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
-      double sum_sq = 0.0, sum_w = 0.0;
-      for (const Sample& sample : samples) {
-        const Eigen::Vector3d p = T * sample.X_board;
-        Eigen::Vector2d u;
-        Eigen::Matrix<double, 2, 3> J;
-        if (!views[sample.view].project(p, u, &J)) continue;
-        const double residual = sample.normal.dot(u - sample.observed);
-        Eigen::Matrix<double, 3, 6> dp;  // d(exp(delta) p) / d(v, omega) at 0
-        dp << Eigen::Matrix3d::Identity(), -skew(p);
-        const Eigen::Matrix<double, 1, 6> row = sample.normal.transpose() * J * dp;
-        const double w = std::abs(residual) <= params_.huber_px ? 1.0 : params_.huber_px / std::abs(residual);
-        H += w * row.transpose() * row;
-        g += w * row.transpose() * residual;
-        sum_sq += residual * residual;
-        sum_w += 1.0;
-      }
-      result.rms_px = std::sqrt(sum_sq / std::max(sum_w, 1.0));
-      H.diagonal() *= 1.0 + 1e-9;  // keeps LDLT well defined if an axis is barely observed
-      const Eigen::Matrix<double, 6, 1> delta = -H.ldlt().solve(g);
-      if (!delta.allFinite()) {
-        result.reason = "pose update is not finite (degenerate rim samples)";
-        result.T_camera_board = T;
-        return result;
-      }
-      const Eigen::Vector3d v = delta.head<3>(), w = delta.tail<3>();
-      const Eigen::Matrix3d R_delta =
-          w.norm() > 0.0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
-                         : Eigen::Matrix3d::Identity();
-      Eigen::Isometry3d next = Eigen::Isometry3d::Identity();
-      next.linear() = R_delta * T.linear();
-      next.translation() = R_delta * T.translation() + v;
-      T = next;
-      round_rotation += w;
-      round_translation += v;
-    }
-    settled = round_rotation.norm() < params_.converged_rotation &&
-              round_translation.norm() < params_.converged_translation;
-
-    // The se(3) test above is strict: the edge positions are re-sampled each
-    // round, so their sub-pixel interpolation bias moves with the pose and the
-    // rounds often settle by a slowly damped oscillation (a few 1e-4 rad about
-    // the camera, i.e. ~0.01 px on the rims, at rms ~0.08 px) that the round
-    // limit cuts off. What matters is how far the round moved the rims in the
-    // images: once that step is shrinking and a small fraction of the edge
-    // noise (rms), further rounds cannot change the pose beyond its own
-    // uncertainty. Only with the final search range (selection locked), and
-    // only when most searched rim samples found a strong edge: on an image
-    // without the board, wall texture yields some edges that a pose can
-    // settle on too, but not along most of the rims.
-    double step_px = 0.0;  // largest image motion of a used sample in this round
-    for (const Sample& sample : samples) {
-      Eigen::Vector2d before, after;
-      if (views[sample.view].project(T_round_start * sample.X_board, before, nullptr) &&
-          views[sample.view].project(T * sample.X_board, after, nullptr))
-        step_px = std::max(step_px, (after - before).norm());
-    }
-    if (!settled && locked && step_px < previous_step_px &&
-        step_px <= params_.converged_step_rms_fraction * result.rms_px &&
-        result.edge_fraction >= params_.min_edge_fraction)
-      settled = true;
-    previous_step_px = step_px;
-    result.last_step_px = step_px;
-  }
-
-  result.T_camera_board = T;
-  for (int h = 0; h < 4; ++h) result.centers[h] = T * Eigen::Vector3d(holes[h].x(), holes[h].y(), 0.0);
-  std::ostringstream reason;
-  if (!settled) {
-    reason << "not converged after " << result.iterations << " rounds (last step " << result.last_step_px
-           << " px, rms " << result.rms_px << " px, " << std::lround(100.0 * result.edge_fraction)
-           << "% of rim samples on an edge)";
-  } else if (result.rms_px > params_.max_rms_px) {
-    reason << "edge rms " << result.rms_px << " px exceeds " << params_.max_rms_px << " px";
-  }
-  result.reason = reason.str();
+  Alignment(params_, rims, views).run(T_camera_board, result);
   result.converged = result.reason.empty();
   return result;
 }

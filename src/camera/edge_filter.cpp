@@ -153,6 +153,89 @@ std::pair<double, double> longest_run(std::vector<double> t, double max_gap) {
   return best;
 }
 
+/// Board-plane coordinates of the points: "horizontal" is the camera x axis
+/// projected into the plane (the board's long side is level), "vertical" its
+/// in-plane perpendicular.
+std::vector<Eigen::Vector2d> board_plane_uv(const std::vector<Eigen::Vector3d>& points, const Plane& plane) {
+  const Eigen::Vector3d n = plane.normal().normalized();
+  Eigen::Vector3d e_h = Eigen::Vector3d::UnitX() - n * n.x();
+  if (e_h.norm() < 0.1) e_h = Eigen::Vector3d::UnitY() - n * n.y();  // plane faces sideways
+  e_h.normalize();
+  const Eigen::Vector3d e_v = n.cross(e_h);
+  std::vector<Eigen::Vector2d> uv(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) uv[k] = {points[k].dot(e_h), points[k].dot(e_v)};
+  return uv;
+}
+
+/// RANSAC over the `alive` points for the line with most inliers among those
+/// within the tilt of the board's horizontal or vertical; its inliers.
+std::vector<int> most_supported_line(const std::vector<Eigen::Vector2d>& uv, const std::vector<int>& alive,
+                                     const EdgeFilter::Params& params, double cos_tilt, std::mt19937_64& rng) {
+  std::uniform_int_distribution<std::size_t> pick(0, alive.size() - 1);
+  std::vector<int> best_inliers;
+  for (int it = 0; it < params.line_iterations; ++it) {
+    const Eigen::Vector2d& a = uv[alive[pick(rng)]];
+    const Eigen::Vector2d& b = uv[alive[pick(rng)]];
+    if ((b - a).norm() < 1e-6) continue;
+    const Eigen::Vector2d dir = (b - a).normalized();
+    // Only candidate borders are worth counting: orientation first.
+    if (std::max(std::abs(dir.x()), std::abs(dir.y())) < cos_tilt) continue;
+    const Line2 candidate{a, dir};
+    std::vector<int> inliers;
+    for (int k : alive)
+      if (candidate.distance(uv[k]) <= params.line_distance) inliers.push_back(k);
+    if (inliers.size() > best_inliers.size()) best_inliers.swap(inliers);
+  }
+  return best_inliers;
+}
+
+/// Which points lie on the board's border lines (step 2 of the file
+/// comment); counts them and the lines in `result`. A rejected candidate
+/// (hole tangent, short piece) blocks its points and the search goes on, so
+/// a border with fewer points than it is still found.
+std::vector<bool> border_line_points(const std::vector<Eigen::Vector2d>& uv, const Target& target,
+                                     const EdgeFilter::Params& params, EdgeFilter::Result& result) {
+  std::vector<bool> removed(uv.size(), false);
+  std::vector<bool> blocked(uv.size(), false);  // on a rejected line: kept, not sampled again
+  std::mt19937_64 rng(params.seed);
+  const double cos_tilt = std::cos(params.max_line_tilt_deg * M_PI / 180.0);
+  const int max_attempts = 3 * params.max_border_lines;
+  for (int attempt = 0; params.remove_border_lines && attempt < max_attempts &&
+                        result.border_lines < params.max_border_lines;
+       ++attempt) {
+    std::vector<int> alive;
+    for (std::size_t k = 0; k < uv.size(); ++k)
+      if (!removed[k] && !blocked[k]) alive.push_back(static_cast<int>(k));
+    if (static_cast<int>(alive.size()) < params.min_line_points) break;
+    const std::vector<int> best_inliers = most_supported_line(uv, alive, params, cos_tilt, rng);
+    if (static_cast<int>(best_inliers.size()) < params.min_line_points) break;
+    const Line2 fitted = fit_line(uv, best_inliers);
+    const bool horizontal = std::abs(fitted.direction.x()) >= std::abs(fitted.direction.y());
+    const bool level = std::max(std::abs(fitted.direction.x()), std::abs(fitted.direction.y())) >= cos_tilt;
+    std::vector<int> on_line;
+    std::vector<double> t;
+    for (int k : alive)
+      if (fitted.distance(uv[k]) <= params.line_distance) {
+        on_line.push_back(k);
+        t.push_back((uv[k] - fitted.point).dot(fitted.direction));
+      }
+    if (on_line.empty()) break;
+    const auto [t0, t1] = longest_run(t, params.max_gap);
+    const double side = horizontal ? target.board_width : target.board_height;
+    if (!level || t1 - t0 < params.min_border_fraction * side) {
+      for (int k : best_inliers) blocked[k] = true;
+      continue;
+    }
+    for (std::size_t m = 0; m < on_line.size(); ++m)
+      if (t[m] >= t0 - params.max_gap && t[m] <= t1 + params.max_gap) {
+        removed[on_line[m]] = true;
+        ++result.border_points;
+      }
+    ++result.border_lines;
+  }
+  return removed;
+}
+
 }  // namespace
 
 void EdgeFilter::Params::validate() const {
@@ -192,83 +275,13 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camer
   const EdgePixels found = edge_pixels(gray, camera, board_cloud, plane_camera, params_);
   result.sobel_threshold = found.threshold;
   result.edge_points = found.points.size();
-  const std::vector<Eigen::Vector3d>& points = found.points;
-  std::vector<int> kept(points.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) kept[k] = static_cast<int>(k);
-
-  // 2. Border lines in plane coordinates: "horizontal" is the camera x axis
-  // projected into the plane (the board's long side is level), "vertical" its
-  // in-plane perpendicular.
-  std::vector<bool> removed(kept.size(), false);
-  std::vector<bool> blocked(kept.size(), false);  // on a rejected line: kept, not sampled again
-  const Eigen::Vector3d n = plane_camera.normal().normalized();
-  Eigen::Vector3d e_h = Eigen::Vector3d::UnitX() - n * n.x();
-  if (e_h.norm() < 0.1) e_h = Eigen::Vector3d::UnitY() - n * n.y();  // plane faces sideways
-  e_h.normalize();
-  const Eigen::Vector3d e_v = n.cross(e_h);
-  std::vector<Eigen::Vector2d> uv(kept.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    const Eigen::Vector3d& p = points[kept[k]];
-    uv[k] = {p.dot(e_h), p.dot(e_v)};
-  }
-  std::mt19937_64 rng(params_.seed);
-  const double cos_tilt = std::cos(params_.max_line_tilt_deg * M_PI / 180.0);
-  // A rejected candidate (hole tangent, short piece) blocks its points and the
-  // search goes on, so a border with fewer points than it is still found.
-  const int max_attempts = 3 * params_.max_border_lines;
-  for (int attempt = 0; params_.remove_border_lines && attempt < max_attempts &&
-                        result.border_lines < params_.max_border_lines;
-       ++attempt) {
-    std::vector<int> alive;
-    for (std::size_t k = 0; k < kept.size(); ++k)
-      if (!removed[k] && !blocked[k]) alive.push_back(static_cast<int>(k));
-    if (static_cast<int>(alive.size()) < params_.min_line_points) break;
-    std::uniform_int_distribution<std::size_t> pick(0, alive.size() - 1);
-    std::vector<int> best_inliers;
-    for (int it = 0; it < params_.line_iterations; ++it) {
-      const Eigen::Vector2d& a = uv[alive[pick(rng)]];
-      const Eigen::Vector2d& b = uv[alive[pick(rng)]];
-      if ((b - a).norm() < 1e-6) continue;
-      const Eigen::Vector2d dir = (b - a).normalized();
-      // Only candidate borders are worth counting: orientation first.
-      if (std::max(std::abs(dir.x()), std::abs(dir.y())) < cos_tilt) continue;
-      const Line2 candidate{a, dir};
-      std::vector<int> inliers;
-      for (int k : alive)
-        if (candidate.distance(uv[k]) <= params_.line_distance) inliers.push_back(k);
-      if (inliers.size() > best_inliers.size()) best_inliers.swap(inliers);
-    }
-    if (static_cast<int>(best_inliers.size()) < params_.min_line_points) break;
-    const Line2 fitted = fit_line(uv, best_inliers);
-    const bool horizontal = std::abs(fitted.direction.x()) >= std::abs(fitted.direction.y());
-    const bool level = std::max(std::abs(fitted.direction.x()), std::abs(fitted.direction.y())) >= cos_tilt;
-    std::vector<int> on_line;
-    std::vector<double> t;
-    for (int k : alive)
-      if (fitted.distance(uv[k]) <= params_.line_distance) {
-        on_line.push_back(k);
-        t.push_back((uv[k] - fitted.point).dot(fitted.direction));
-      }
-    if (on_line.empty()) break;
-    const auto [t0, t1] = longest_run(t, params_.max_gap);
-    const double side = horizontal ? target.board_width : target.board_height;
-    if (!level || t1 - t0 < params_.min_border_fraction * side) {
-      for (int k : best_inliers) blocked[k] = true;
-      continue;
-    }
-    for (std::size_t m = 0; m < on_line.size(); ++m)
-      if (t[m] >= t0 - params_.max_gap && t[m] <= t1 + params_.max_gap) {
-        removed[on_line[m]] = true;
-        ++result.border_points;
-      }
-    ++result.border_lines;
-  }
-
-  for (std::size_t k = 0; k < kept.size(); ++k) {
+  const std::vector<bool> removed =
+      border_line_points(board_plane_uv(found.points, plane_camera), target, params_, result);
+  for (std::size_t k = 0; k < found.points.size(); ++k) {
     if (removed[k]) continue;
-    result.edges.points.push_back(points[kept[k]]);
-    result.edges.pixels.push_back(found.pixels[kept[k]]);
-    result.gradients.push_back(found.gradients[kept[k]]);
+    result.edges.points.push_back(found.points[k]);
+    result.edges.pixels.push_back(found.pixels[k]);
+    result.gradients.push_back(found.gradients[k]);
   }
   result.found = !result.edges.points.empty();
   if (!result.found)

@@ -17,10 +17,115 @@
 #include "circles/hole_pattern.hpp"
 #include "plane/plane_fit.hpp"
 
+#include <array>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace l2s {
+
+namespace {
+
+/// Edge points in the board plane's frame (x right, y up, z towards the
+/// sensor), each with its aperture shift and in-plane gradient when known.
+std::vector<detail::EdgePoint2> plane_points(const std::vector<Eigen::Vector3d>& edges,
+                                             const std::vector<Eigen::Vector3d>& gradients, const Plane& plane,
+                                             const detail::PlaneAxes& axes, const Eigen::Vector3d& origin,
+                                             const Target& target, const CircleFinder::Params& params) {
+  std::vector<detail::EdgePoint2> points;
+  points.reserve(edges.size());
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const Eigen::Vector3d& q = edges[k];
+    if (!q.allFinite() || q.norm() < 1e-9) continue;
+    const Eigen::Vector3d ray = q.normalized();
+    const double ray_normal = ray.dot(plane.normal());  // < 0: the ray goes away from the sensor side
+    Eigen::Vector3d on_plane = q - plane.signedDistance(q) * plane.normal();
+    if (params.project_along_rays && ray_normal < -1e-6) on_plane = ray * (-plane.offset() / ray_normal);
+    detail::EdgePoint2 p;
+    p.q = Eigen::Vector2d((on_plane - origin).dot(axes.right), (on_plane - origin).dot(axes.up));
+    if (params.model_thickness && ray_normal < -1e-6) {
+      const Eigen::Vector2d ray_inplane(ray.dot(axes.right), ray.dot(axes.up));
+      p.shift = -target.board_thickness * ray_inplane / ray_normal;
+    }
+    if (!gradients.empty()) {
+      const Eigen::Vector2d g(gradients[k].dot(axes.right), gradients[k].dot(axes.up));
+      if (g.allFinite() && g.norm() > 1e-9) p.direction = g.normalized();
+    }
+    points.push_back(p);
+  }
+  return points;
+}
+
+/// The candidate search's settings for holes of `radius` [m].
+detail::CandidateSearch candidate_search(const CircleFinder::Params& params, double radius) {
+  detail::CandidateSearch search;
+  search.radius = radius;
+  search.inlier_threshold = params.inlier_threshold;
+  search.min_points = static_cast<std::size_t>(params.min_circle_points);
+  search.max_iterations = params.max_iterations;
+  search.max_candidates = static_cast<std::size_t>(params.max_candidates);
+  // Two candidates both within tolerance of one hole would make every frame ambiguous.
+  search.separation = std::max(0.5 * radius, 2.0 * params.spacing_tolerance);
+  return search;
+}
+
+/// The four holes refit as one rigid pattern from the matched one. Every
+/// point within the threshold of a hole's aperture joins the fit, including
+/// points the candidate search left to no circle. Returns the centres in the
+/// plane frame; fills rms, radius, pattern_angle and fit_points.
+std::array<Eigen::Vector2d, 4> fit_pattern(const std::vector<detail::EdgePoint2>& points,
+                                           const detail::PatternMatch& match,
+                                           const std::array<Eigen::Vector2d, 4>& holes, double radius,
+                                           const CircleFinder::Params& params, CircleFinder::Result& result) {
+  detail::PatternPose pose{match.offset, match.angle, radius};
+  detail::RadiusFit radius_fit;
+  radius_fit.free = params.fit_radius;
+  radius_fit.nominal = radius;
+  std::vector<int> hole_of(points.size(), -1);
+  for (int pass = 0; pass < 2; ++pass) {
+    result.fit_points = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      hole_of[i] = -1;
+      double best = params.inlier_threshold;
+      for (int h = 0; h < 4; ++h) {
+        const double e = std::abs(detail::aperture_residual(points[i], pose.center(holes[h]), pose.radius));
+        if (e <= best) best = e, hole_of[i] = h;
+      }
+      if (hole_of[i] >= 0) ++result.fit_points;
+    }
+    result.rms = detail::refine_pattern(points, hole_of, holes, radius_fit, params.max_refine_iterations, pose);
+  }
+  result.radius = pose.radius;
+  result.pattern_angle = pose.angle;
+  std::array<Eigen::Vector2d, 4> centers;
+  for (int h = 0; h < 4; ++h) centers[h] = pose.center(holes[h]);
+  return centers;
+}
+
+/// The paper's fit: each matched candidate refined on its own inliers.
+/// Returns the centres in the plane frame; fills rms, radius, pattern_angle
+/// and fit_points.
+std::array<Eigen::Vector2d, 4> fit_each_circle(const std::vector<detail::EdgePoint2>& points,
+                                               const std::vector<detail::CircleCandidate2>& candidates,
+                                               const detail::PatternMatch& match, double radius,
+                                               const CircleFinder::Params& params, CircleFinder::Result& result) {
+  std::array<Eigen::Vector2d, 4> centers;
+  double sum_sq = 0.0;
+  result.fit_points = 0;
+  for (int h = 0; h < 4; ++h) {
+    const detail::CircleCandidate2& c = candidates[match.candidate_of_hole[h]];
+    centers[h] = c.center;
+    const double rms = detail::refine_circle(points, c.inliers, radius, params.max_refine_iterations, centers[h]);
+    sum_sq += rms * rms * static_cast<double>(c.inliers.size());
+    result.fit_points += c.inliers.size();
+  }
+  result.rms = result.fit_points ? std::sqrt(sum_sq / static_cast<double>(result.fit_points)) : 0.0;
+  result.pattern_angle = match.angle;
+  result.radius = radius;
+  return centers;
+}
+
+}  // namespace
 
 void CircleFinder::Params::validate() const {
   if (!(inlier_threshold > 0.0)) throw ParamError("inlier_threshold", "must be > 0 m");
@@ -57,41 +162,12 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
   const detail::PlaneAxes axes = detail::plane_axes(plane.normal(), up);
   const Eigen::Vector3d origin = -plane.offset() * plane.normal();
   const double radius = target.hole_radius;
-
-  // Edge points in the plane frame (x right, y up, z towards the sensor).
-  std::vector<detail::EdgePoint2> points;
-  points.reserve(edges.size());
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    const Eigen::Vector3d& q = edges[k];
-    if (!q.allFinite() || q.norm() < 1e-9) continue;
-    const Eigen::Vector3d ray = q.normalized();
-    const double ray_normal = ray.dot(plane.normal());  // < 0: the ray goes away from the sensor side
-    Eigen::Vector3d on_plane = q - plane.signedDistance(q) * plane.normal();
-    if (params_.project_along_rays && ray_normal < -1e-6) on_plane = ray * (-plane.offset() / ray_normal);
-    detail::EdgePoint2 p;
-    p.q = Eigen::Vector2d((on_plane - origin).dot(axes.right), (on_plane - origin).dot(axes.up));
-    if (params_.model_thickness && ray_normal < -1e-6) {
-      const Eigen::Vector2d ray_inplane(ray.dot(axes.right), ray.dot(axes.up));
-      p.shift = -target.board_thickness * ray_inplane / ray_normal;
-    }
-    if (!gradients.empty()) {
-      const Eigen::Vector2d g(gradients[k].dot(axes.right), gradients[k].dot(axes.up));
-      if (g.allFinite() && g.norm() > 1e-9) p.direction = g.normalized();
-    }
-    points.push_back(p);
-  }
+  const std::vector<detail::EdgePoint2> points = plane_points(edges, gradients, plane, axes, origin, target, params_);
   const auto to_sensor = [&](const Eigen::Vector2d& c) -> Eigen::Vector3d {
     return origin + c.x() * axes.right + c.y() * axes.up;
   };
 
-  detail::CandidateSearch search;
-  search.radius = radius;
-  search.inlier_threshold = params_.inlier_threshold;
-  search.min_points = static_cast<std::size_t>(params_.min_circle_points);
-  search.max_iterations = params_.max_iterations;
-  search.max_candidates = static_cast<std::size_t>(params_.max_candidates);
-  // Two candidates both within tolerance of one hole would make every frame ambiguous.
-  search.separation = std::max(0.5 * radius, 2.0 * params_.spacing_tolerance);
+  const detail::CandidateSearch search = candidate_search(params_, radius);
   std::mt19937_64 rng(params_.seed);
   const std::vector<detail::CircleCandidate2> candidates =
       gradients.empty() ? detail::find_circle_candidates(points, search, rng)
@@ -111,46 +187,9 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
     return result;
   }
   result.matched = match.candidate_of_hole;
-
-  std::array<Eigen::Vector2d, 4> centers2;
-  if (params_.joint_fit) {
-    // Every point within the threshold of a hole's aperture joins the fit,
-    // including points the candidate search left to no circle.
-    detail::PatternPose pose{match.offset, match.angle, radius};
-    detail::RadiusFit radius_fit;
-    radius_fit.free = params_.fit_radius;
-    radius_fit.nominal = radius;
-    std::vector<int> hole_of(points.size(), -1);
-    for (int pass = 0; pass < 2; ++pass) {
-      result.fit_points = 0;
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        hole_of[i] = -1;
-        double best = params_.inlier_threshold;
-        for (int h = 0; h < 4; ++h) {
-          const double e = std::abs(detail::aperture_residual(points[i], pose.center(holes[h]), pose.radius));
-          if (e <= best) best = e, hole_of[i] = h;
-        }
-        if (hole_of[i] >= 0) ++result.fit_points;
-      }
-      result.rms = detail::refine_pattern(points, hole_of, holes, radius_fit, params_.max_refine_iterations, pose);
-    }
-    result.radius = pose.radius;
-    for (int h = 0; h < 4; ++h) centers2[h] = pose.center(holes[h]);
-    result.pattern_angle = pose.angle;
-  } else {
-    double sum_sq = 0.0;
-    result.fit_points = 0;
-    for (int h = 0; h < 4; ++h) {
-      const detail::CircleCandidate2& c = candidates[match.candidate_of_hole[h]];
-      centers2[h] = c.center;
-      const double rms = detail::refine_circle(points, c.inliers, radius, params_.max_refine_iterations, centers2[h]);
-      sum_sq += rms * rms * static_cast<double>(c.inliers.size());
-      result.fit_points += c.inliers.size();
-    }
-    result.rms = result.fit_points ? std::sqrt(sum_sq / static_cast<double>(result.fit_points)) : 0.0;
-    result.pattern_angle = match.angle;
-    result.radius = radius;
-  }
+  const std::array<Eigen::Vector2d, 4> centers2 =
+      params_.joint_fit ? fit_pattern(points, match, holes, radius, params_, result)
+                        : fit_each_circle(points, candidates, match, radius, params_, result);
   for (int h = 0; h < 4; ++h) result.centers[h] = to_sensor(centers2[h]);
   result.found = true;
   return result;

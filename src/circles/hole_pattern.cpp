@@ -44,6 +44,76 @@ Fit rigid_fit(const std::array<Eigen::Vector2d, 4>& holes, const std::array<Eige
   return fit;
 }
 
+// A set of four candidates that fits the pattern, with its best labelling.
+struct SetFit {
+  std::array<int, 4> candidate_of_hole;
+  Fit fit;
+  std::size_t support;  // edge points on the four circles
+};
+
+/// compatible[a][b]: candidates a and b are a known hole distance apart (a
+/// side or a diagonal). Pairs that are not prune the search over sets of four.
+std::vector<std::vector<bool>> compatible_pairs(const std::vector<Eigen::Vector2d>& centers,
+                                                const std::array<Eigen::Vector2d, 4>& holes, double tolerance) {
+  const int n = static_cast<int>(centers.size());
+  std::vector<double> hole_distances;
+  for (int h = 0; h < 4; ++h)
+    for (int k = h + 1; k < 4; ++k) hole_distances.push_back((holes[h] - holes[k]).norm());
+  std::vector<std::vector<bool>> compatible(n, std::vector<bool>(n, false));
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (const double distance : hole_distances)
+        if (a != b && std::abs((centers[a] - centers[b]).norm() - distance) <= 2.0 * tolerance)
+          compatible[a][b] = true;
+  return compatible;
+}
+
+/// The labelling of the sorted set {a, b, c, d} whose fit is within
+/// tolerance and nearest to upright, if any; best_miss keeps the smallest
+/// fit error seen.
+std::optional<SetFit> best_labelling(const std::array<int, 4>& set, const std::vector<Eigen::Vector2d>& centers,
+                                     const std::vector<std::size_t>& support,
+                                     const std::array<Eigen::Vector2d, 4>& holes, double tolerance,
+                                     double& best_miss) {
+  std::array<int, 4> perm = set;  // sorted: next_permutation visits all 24
+  std::optional<SetFit> set_fit;
+  do {
+    const std::array<Eigen::Vector2d, 4> points{
+        {centers[perm[0]], centers[perm[1]], centers[perm[2]], centers[perm[3]]}};
+    const Fit fit = rigid_fit(holes, points);
+    best_miss = std::min(best_miss, fit.max_error);
+    if (fit.max_error > tolerance) continue;
+    if (!set_fit || std::abs(fit.angle) < std::abs(set_fit->fit.angle))
+      set_fit = SetFit{perm, fit, support[set[0]] + support[set[1]] + support[set[2]] + support[set[3]]};
+  } while (std::next_permutation(perm.begin(), perm.end()));
+  return set_fit;
+}
+
+struct SetSearch {
+  std::vector<SetFit> fits;
+  double best_miss = std::numeric_limits<double>::infinity();  // [m] smallest fit error of any labelling
+};
+
+/// Every set of four pairwise compatible candidates that fits, with its best labelling.
+SetSearch fitting_sets(const std::vector<Eigen::Vector2d>& centers, const std::vector<std::size_t>& support,
+                       const std::array<Eigen::Vector2d, 4>& holes, double tolerance) {
+  const int n = static_cast<int>(centers.size());
+  const std::vector<std::vector<bool>> compatible = compatible_pairs(centers, holes, tolerance);
+  SetSearch search;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c)
+        for (int d = c + 1; d < n; ++d) {
+          if (!(compatible[a][b] && compatible[a][c] && compatible[a][d] && compatible[b][c] &&
+                compatible[b][d] && compatible[c][d]))
+            continue;
+          if (const auto set_fit =
+                  best_labelling({{a, b, c, d}}, centers, support, holes, tolerance, search.best_miss))
+            search.fits.push_back(*set_fit);
+        }
+  return search;
+}
+
 }  // namespace
 
 PatternMatch match_hole_pattern(const std::vector<Eigen::Vector2d>& centers,
@@ -56,50 +126,12 @@ PatternMatch match_hole_pattern(const std::vector<Eigen::Vector2d>& centers,
     match.reason = "only " + std::to_string(n) + " circle candidate(s), 4 holes needed";
     return match;
   }
-  // Every set of four candidates that fits, with its best labelling.
-  struct SetFit {
-    std::array<int, 4> candidate_of_hole;
-    Fit fit;
-    std::size_t support;  // edge points on the four circles
-  };
-  // Two holes of one pattern are a known distance apart (a side or a diagonal);
-  // pairs that are not prune the search over sets of four.
-  std::vector<double> hole_distances;
-  for (int h = 0; h < 4; ++h)
-    for (int k = h + 1; k < 4; ++k) hole_distances.push_back((holes[h] - holes[k]).norm());
-  std::vector<std::vector<bool>> compatible(n, std::vector<bool>(n, false));
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      for (const double distance : hole_distances)
-        if (a != b && std::abs((centers[a] - centers[b]).norm() - distance) <= 2.0 * tolerance)
-          compatible[a][b] = true;
-
-  std::vector<SetFit> fits;
-  double best_miss = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < n; ++a)
-    for (int b = a + 1; b < n; ++b)
-      for (int c = b + 1; c < n; ++c)
-        for (int d = c + 1; d < n; ++d) {
-          if (!(compatible[a][b] && compatible[a][c] && compatible[a][d] && compatible[b][c] &&
-                compatible[b][d] && compatible[c][d]))
-            continue;
-          std::array<int, 4> perm{{a, b, c, d}};  // sorted: next_permutation visits all 24
-          std::optional<SetFit> set_fit;
-          do {
-            const std::array<Eigen::Vector2d, 4> points{
-                {centers[perm[0]], centers[perm[1]], centers[perm[2]], centers[perm[3]]}};
-            const Fit fit = rigid_fit(holes, points);
-            best_miss = std::min(best_miss, fit.max_error);
-            if (fit.max_error > tolerance) continue;
-            if (!set_fit || std::abs(fit.angle) < std::abs(set_fit->fit.angle))
-              set_fit = SetFit{perm, fit, support[a] + support[b] + support[c] + support[d]};
-          } while (std::next_permutation(perm.begin(), perm.end()));
-          if (set_fit) fits.push_back(*set_fit);
-        }
+  const SetSearch search = fitting_sets(centers, support, holes, tolerance);
+  const std::vector<SetFit>& fits = search.fits;
   if (fits.empty()) {
     std::ostringstream reason;
     reason << "no four of the " << n << " circle candidates form the hole pattern (closest set misses by "
-           << best_miss << " m, tolerance " << tolerance << " m)";
+           << search.best_miss << " m, tolerance " << tolerance << " m)";
     match.reason = reason.str();
     return match;
   }

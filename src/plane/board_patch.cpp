@@ -84,67 +84,69 @@ bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector3d& 
   return patch.box.contains(uv) && patch.cells.count(grid.cell(uv)) > 0;
 }
 
-Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points,
-                    const Eigen::Vector2d& window, double window_share) {
-  Patch patch;
-  if (points.empty()) return patch;
-  std::vector<Eigen::Vector2d> uv(points.size());
-  std::vector<int> cell_of_point(points.size());
-  std::unordered_map<std::uint64_t, int> cell_id;
-  std::vector<std::uint64_t> cell_keys;
-  std::vector<int> cell_count;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    uv[i] = grid.to_plane(points[i]);
-    const std::uint64_t key = grid.cell(uv[i]);
-    const auto [it, inserted] = cell_id.emplace(key, static_cast<int>(cell_keys.size()));
-    if (inserted) {
-      cell_keys.push_back(key);
-      cell_count.push_back(0);
-    }
-    cell_of_point[i] = it->second;
-    ++cell_count[it->second];
-  }
+namespace {
 
-  std::vector<int> parent(cell_keys.size());
+/// The occupied cells of a plane grid and which cell each point is in.
+struct Cells {
+  std::vector<Eigen::Vector2d> uv;  // [m] each point in the plane
+  std::vector<int> of_point;        // cell id of each point
+  std::unordered_map<std::uint64_t, int> id;  // grid key -> cell id
+  std::vector<std::uint64_t> keys;  // cell id -> grid key
+  std::vector<int> count;           // points in each cell
+
+  Cells(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points)
+      : uv(points.size()), of_point(points.size()) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      uv[i] = grid.to_plane(points[i]);
+      const std::uint64_t key = grid.cell(uv[i]);
+      const auto [it, inserted] = id.emplace(key, static_cast<int>(keys.size()));
+      if (inserted) {
+        keys.push_back(key);
+        count.push_back(0);
+      }
+      of_point[i] = it->second;
+      ++count[it->second];
+    }
+  }
+};
+
+/// Union-find parents joining 8-connected cells (a component's root is its
+/// smallest cell id).
+std::vector<int> connect(const PlaneGrid& grid, const Cells& cells) {
+  std::vector<int> parent(cells.keys.size());
   std::iota(parent.begin(), parent.end(), 0);
-  for (std::size_t c = 0; c < cell_keys.size(); ++c)
+  for (std::size_t c = 0; c < cells.keys.size(); ++c)
     for (int du = -1; du <= 1; ++du)
       for (int dv = -1; dv <= 1; ++dv) {
-        const auto it = cell_id.find(grid.neighbour(cell_keys[c], du, dv));
-        if (it == cell_id.end()) continue;
+        const auto it = cells.id.find(grid.neighbour(cells.keys[c], du, dv));
+        if (it == cells.id.end()) continue;
         const int a = find_root(parent, static_cast<int>(c));
         const int b = find_root(parent, it->second);
         if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smaller id wins: deterministic
       }
+  return parent;
+}
 
-  std::vector<std::size_t> component_points(cell_keys.size(), 0);
-  for (std::size_t c = 0; c < cell_keys.size(); ++c)
-    component_points[find_root(parent, static_cast<int>(c))] += cell_count[c];
-  const int best = static_cast<int>(std::max_element(component_points.begin(), component_points.end()) -
-                                    component_points.begin());
-  // Sparse cells hanging off the patch (the strip where the board plane cuts
-  // the ground, a stand) would inflate its extent; the board's own cells hold
-  // far more points than they do. They stay in the patch (cells beside a hole
-  // are sparse too, and their points are board points) but not in its extent.
+/// Fewest points a cell of component `best` needs to count towards the
+/// patch's extent. Sparse cells hanging off the patch (the strip where the
+/// board plane cuts the ground, a stand) would inflate it; the board's own
+/// cells hold far more points than they do. The reference is the densest
+/// tenth of the cells (a long stray strip can hold more cells than the
+/// board, so the median is not safe).
+double min_dense_cell_points(const Cells& cells, std::vector<int>& parent, int best) {
   std::vector<int> best_counts;
-  for (std::size_t c = 0; c < cell_keys.size(); ++c)
-    if (find_root(parent, static_cast<int>(c)) == best) best_counts.push_back(cell_count[c]);
-  // Reference: the densest tenth of the cells (a long stray strip can hold
-  // more cells than the board, so the median is not safe).
+  for (std::size_t c = 0; c < cells.keys.size(); ++c)
+    if (find_root(parent, static_cast<int>(c)) == best) best_counts.push_back(cells.count[c]);
   const std::size_t dense = best_counts.size() * 9 / 10;
   std::nth_element(best_counts.begin(), best_counts.begin() + dense, best_counts.end());
-  const double min_cell_points = kSparseCellShare * best_counts[dense];
-  std::vector<bool> dense_cell(cell_keys.size(), false);
-  for (std::size_t c = 0; c < cell_keys.size(); ++c) {
-    if (find_root(parent, static_cast<int>(c)) != best) continue;
-    patch.cells.insert(cell_keys[c]);
-    dense_cell[c] = cell_count[c] >= min_cell_points;
-  }
-  patch.points = component_points[best];
+  return kSparseCellShare * best_counts[dense];
+}
 
-  std::vector<Eigen::Vector2d> members;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (dense_cell[cell_of_point[i]]) members.push_back(uv[i]);
+/// Cuts the patch to the best window when that holds window_share of its
+/// members (then keeping only the members inside), and sets its box with a
+/// margin of one bin (subsampling misses the extremes).
+void fit_box(Patch& patch, std::vector<Eigen::Vector2d>& members, const Eigen::Vector2d& window,
+             double window_share) {
   std::size_t in_window = 0;
   const Eigen::AlignedBox2d box = best_window(members, window, &in_window);
   patch.box = Eigen::AlignedBox2d();
@@ -158,9 +160,12 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
     members.swap(inside);
     patch.points = members.size();
   }
-  patch.box.extend(patch.box.min() - Eigen::Vector2d::Constant(kBin));  // margin: subsampling misses extremes
+  patch.box.extend(patch.box.min() - Eigen::Vector2d::Constant(kBin));
   patch.box.extend(patch.box.max() + Eigen::Vector2d::Constant(kBin));
-  // Smallest-area enclosing rectangle over 1-degree steps: robust to a rolled board.
+}
+
+/// Smallest-area enclosing rectangle over 1-degree steps: robust to a rolled board.
+void fit_extent(Patch& patch, const std::vector<Eigen::Vector2d>& members) {
   double best_area = std::numeric_limits<double>::infinity();
   for (int k = 0; k < kDirections; ++k) {
     const double angle = M_PI / 2.0 * k / kDirections;
@@ -181,6 +186,37 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
       patch.extent_short = std::min(wa, wb);
     }
   }
+}
+
+}  // namespace
+
+Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points,
+                    const Eigen::Vector2d& window, double window_share) {
+  Patch patch;
+  if (points.empty()) return patch;
+  const Cells cells(grid, points);
+  std::vector<int> parent = connect(grid, cells);
+  std::vector<std::size_t> component_points(cells.keys.size(), 0);
+  for (std::size_t c = 0; c < cells.keys.size(); ++c)
+    component_points[find_root(parent, static_cast<int>(c))] += cells.count[c];
+  const int best = static_cast<int>(std::max_element(component_points.begin(), component_points.end()) -
+                                    component_points.begin());
+  // Sparse cells stay in the patch (cells beside a hole are sparse too, and
+  // their points are board points) but not in its extent.
+  const double min_cell_points = min_dense_cell_points(cells, parent, best);
+  std::vector<bool> dense_cell(cells.keys.size(), false);
+  for (std::size_t c = 0; c < cells.keys.size(); ++c) {
+    if (find_root(parent, static_cast<int>(c)) != best) continue;
+    patch.cells.insert(cells.keys[c]);
+    dense_cell[c] = cells.count[c] >= min_cell_points;
+  }
+  patch.points = component_points[best];
+
+  std::vector<Eigen::Vector2d> members;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (dense_cell[cells.of_point[i]]) members.push_back(cells.uv[i]);
+  fit_box(patch, members, window, window_share);
+  fit_extent(patch, members);
   return patch;
 }
 

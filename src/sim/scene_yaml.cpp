@@ -117,6 +117,62 @@ void read_quirks(const Reader& r, const YAML::Node& node, LidarQuirks* quirks) {
   }
 }
 
+/// `setting: 1..9` (a Table I row) or a custom `sensor_pose`, not both.
+void read_sensor_pose(const Reader& r, const YAML::Node& root, SimulationConfig* config) {
+  if (root["setting"] && root["sensor_pose"]) r.fail("sensor_pose", "give either setting or sensor_pose");
+  if (root["setting"]) {
+    int index = 0;
+    r.read(root, "setting", "", &index);
+    if (index < 1 || index > 9) r.fail("setting", "must be 1..9 (Table I)");
+    config->setting_index = index;
+    config->setting = paper_setting(index);
+  }
+  if (const YAML::Node pose = root["sensor_pose"]) {
+    r.only_keys(pose, "sensor_pose", {"tx", "ty", "tz", "yaw", "pitch", "roll"});
+    config->setting_index = 0;
+    config->setting = SensorSetting{};
+    r.read(pose, "tx", "sensor_pose", &config->setting.tx);
+    r.read(pose, "ty", "sensor_pose", &config->setting.ty);
+    r.read(pose, "tz", "sensor_pose", &config->setting.tz);
+    r.read(pose, "yaw", "sensor_pose", &config->setting.yaw);
+    r.read(pose, "pitch", "sensor_pose", &config->setting.pitch);
+    r.read(pose, "roll", "sensor_pose", &config->setting.roll);
+  }
+}
+
+/// `target: NAME` (a Target preset) or a map of its dimensions.
+void read_target(const Reader& r, const YAML::Node& target, Target* out) {
+  if (target.IsScalar()) {
+    try {
+      *out = Target::preset(target.as<std::string>());
+    } catch (const ParamError& e) {
+      r.fail("target", e.what());
+    }
+    return;
+  }
+  r.only_keys(target, "target", {"board_width", "board_height", "board_thickness", "hole_radius",
+                                 "hole_spacing_x", "hole_spacing_y"});
+  r.read(target, "board_width", "target", &out->board_width);
+  r.read(target, "board_height", "target", &out->board_height);
+  r.read(target, "board_thickness", "target", &out->board_thickness);
+  r.read(target, "hole_radius", "target", &out->hole_radius);
+  r.read(target, "hole_spacing_x", "target", &out->hole_spacing_x);
+  r.read(target, "hole_spacing_y", "target", &out->hole_spacing_y);
+}
+
+/// The `board_pose` map (otherwise the board is placed automatically).
+BoardPose read_board_pose(const Reader& r, const YAML::Node& pose) {
+  r.only_keys(pose, "board_pose", {"x", "y", "z", "yaw", "pitch", "roll"});
+  BoardPose board;
+  r.read(pose, "x", "board_pose", &board.x);
+  r.read(pose, "y", "board_pose", &board.y);
+  r.read(pose, "z", "board_pose", &board.z);
+  r.read(pose, "yaw", "board_pose", &board.yaw);
+  r.read(pose, "pitch", "board_pose", &board.pitch);
+  r.read(pose, "roll", "board_pose", &board.roll);
+  return board;
+}
+
 }  // namespace
 
 SimulationConfig parse_simulation_config(const std::string& yaml_text, const std::string& origin) {
@@ -133,61 +189,15 @@ SimulationConfig parse_simulation_config(const std::string& yaml_text, const std
                          "board_pose", "camera", "appearance", "scene", "strict_placement", "threads",
                          "lidar_quirks"});
 
-  if (root["setting"] && root["sensor_pose"]) r.fail("sensor_pose", "give either setting or sensor_pose");
-  if (root["setting"]) {
-    int index = 0;
-    r.read(root, "setting", "", &index);
-    if (index < 1 || index > 9) r.fail("setting", "must be 1..9 (Table I)");
-    config.setting_index = index;
-    config.setting = paper_setting(index);
-  }
-  if (const YAML::Node pose = root["sensor_pose"]) {
-    r.only_keys(pose, "sensor_pose", {"tx", "ty", "tz", "yaw", "pitch", "roll"});
-    config.setting_index = 0;
-    config.setting = SensorSetting{};
-    r.read(pose, "tx", "sensor_pose", &config.setting.tx);
-    r.read(pose, "ty", "sensor_pose", &config.setting.ty);
-    r.read(pose, "tz", "sensor_pose", &config.setting.tz);
-    r.read(pose, "yaw", "sensor_pose", &config.setting.yaw);
-    r.read(pose, "pitch", "sensor_pose", &config.setting.pitch);
-    r.read(pose, "roll", "sensor_pose", &config.setting.roll);
-  }
+  read_sensor_pose(r, root, &config);
   r.read(root, "lidar", "", &config.lidar);
   r.read(root, "frames", "", &config.frames);
   r.read(root, "noise_factor", "", &config.noise_factor);
   r.read(root, "seed", "", &config.seed);
   r.read(root, "strict_placement", "", &config.strict_placement);
   r.read(root, "threads", "", &config.threads);
-
-  if (const YAML::Node target = root["target"]) {
-    if (target.IsScalar()) {
-      try {
-        config.target = Target::preset(target.as<std::string>());
-      } catch (const ParamError& e) {
-        r.fail("target", e.what());
-      }
-    } else {
-      r.only_keys(target, "target", {"board_width", "board_height", "board_thickness", "hole_radius",
-                                     "hole_spacing_x", "hole_spacing_y"});
-      r.read(target, "board_width", "target", &config.target.board_width);
-      r.read(target, "board_height", "target", &config.target.board_height);
-      r.read(target, "board_thickness", "target", &config.target.board_thickness);
-      r.read(target, "hole_radius", "target", &config.target.hole_radius);
-      r.read(target, "hole_spacing_x", "target", &config.target.hole_spacing_x);
-      r.read(target, "hole_spacing_y", "target", &config.target.hole_spacing_y);
-    }
-  }
-  if (const YAML::Node pose = root["board_pose"]) {
-    r.only_keys(pose, "board_pose", {"x", "y", "z", "yaw", "pitch", "roll"});
-    BoardPose board;
-    r.read(pose, "x", "board_pose", &board.x);
-    r.read(pose, "y", "board_pose", &board.y);
-    r.read(pose, "z", "board_pose", &board.z);
-    r.read(pose, "yaw", "board_pose", &board.yaw);
-    r.read(pose, "pitch", "board_pose", &board.pitch);
-    r.read(pose, "roll", "board_pose", &board.roll);
-    config.board_pose = board;
-  }
+  if (const YAML::Node target = root["target"]) read_target(r, target, &config.target);
+  if (const YAML::Node pose = root["board_pose"]) config.board_pose = read_board_pose(r, pose);
   // --- Camera side (scene_yaml_camera.hpp): the rig and the scene's look ---
   if (const YAML::Node camera = root["camera"]) detail::read_camera_block(camera, origin, &config.rig);
   if (const YAML::Node look = root["appearance"]) detail::read_appearance_block(look, origin, &config.appearance);

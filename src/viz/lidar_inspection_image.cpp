@@ -125,39 +125,34 @@ cv::Mat top_down_panel(const LidarInspection& in, int size_px) {
   return panel;
 }
 
-// The board plane seen face-on from the sensor.
-cv::Mat board_plane_panel(const LidarInspection& in, const Target& target, int size_px) {
-  if (!in.plane || in.candidate < 0) {
-    cv::Mat panel(size_px, size_px, CV_8UC3, cv::Scalar(20, 20, 20));
-    text(panel, "board plane: not found", {10, 40}, kFail);
-    if (in.plane) {
-      int y = 70;
-      for (std::size_t i = 0; i < in.plane->candidates.size(); ++i) {
-        const auto& c = in.plane->candidates[i];
-        char head[128];
-        std::snprintf(head, sizeof(head), "P%zu: %.1f deg tilt, %zu points, %.2f x %.2f m:", i,
-                      std::asin(std::min(1.0, std::abs(c.plane.normal().z()))) * 180.0 / M_PI,
-                      c.patch_points, c.extent_long, c.extent_short);
-        text(panel, head, {10, y}, kRejected, 0.45, 1);
-        y += 20;
-        for (const auto& line : wrap(c.reason, 0.45, panel.cols - 40)) {
-          text(panel, line, {30, y}, kText, 0.45, 1);
-          y += 20;
-        }
-        y += 6;
-      }
+// Without a board plane: why each candidate plane was rejected.
+cv::Mat no_board_panel(const LidarInspection& in, int size_px) {
+  cv::Mat panel(size_px, size_px, CV_8UC3, cv::Scalar(20, 20, 20));
+  text(panel, "board plane: not found", {10, 40}, kFail);
+  if (!in.plane) return panel;
+  int y = 70;
+  for (std::size_t i = 0; i < in.plane->candidates.size(); ++i) {
+    const auto& c = in.plane->candidates[i];
+    char head[128];
+    std::snprintf(head, sizeof(head), "P%zu: %.1f deg tilt, %zu points, %.2f x %.2f m:", i,
+                  std::asin(std::min(1.0, std::abs(c.plane.normal().z()))) * 180.0 / M_PI,
+                  c.patch_points, c.extent_long, c.extent_short);
+    text(panel, head, {10, y}, kRejected, 0.45, 1);
+    y += 20;
+    for (const auto& line : wrap(c.reason, 0.45, panel.cols - 40)) {
+      text(panel, line, {30, y}, kText, 0.45, 1);
+      y += 20;
     }
-    return panel;
+    y += 6;
   }
-  const PlaneCandidate& plane = in.plane->candidates[in.candidate];
-  const auto frame = detail::PlaneFrame::make(plane.plane, Eigen::Vector3d::UnitZ(),
-                                              detail::centroid(in.cloud.points, plane.inliers));
-  const double half_w = 0.5 * target.board_width + 0.5, half_h = 0.5 * target.board_height + 0.5;
-  const View view = View::fit({-half_w, -half_h}, {half_w, half_h}, size_px);
-  cv::Mat panel(std::max(view.height, size_px), view.width, CV_8UC3, cv::Scalar(20, 20, 20));
+  return panel;
+}
 
-  // Where each other point's ray crossed the board plane: behind the plane
-  // (seen through a hole or past the board) or in front of it (an occluder).
+// Where each other point's ray crossed the board plane: behind the plane
+// (seen through a hole or past the board) or in front of it (an occluder).
+// Then the board points themselves.
+void draw_plane_crossings(cv::Mat& panel, const View& view, const PlaneFrame& frame, const LidarInspection& in,
+                          const PlaneCandidate& plane) {
   const Eigen::Vector3d n = plane.plane.normal();
   const double d = plane.plane.offset();
   std::vector<bool> on_board(in.cloud.size(), false);
@@ -177,49 +172,75 @@ cv::Mat board_plane_panel(const LidarInspection& in, const Target& target, int s
     const Eigen::Vector2d q = frame.to_plane(in.cloud.points[i]);
     if (view.inside(q)) cv::circle(panel, view.to_px(q), 2, kBoard, cv::FILLED);
   }
+}
 
-  // The board the circles imply: outline and holes, centred and rolled as found.
-  if (in.circles && in.circles->found) {
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (const auto& c : in.circles->centers) centre += frame.to_plane(c) / 4.0;
-    const double a = in.circles->pattern_angle;
-    const Eigen::Rotation2Dd roll(a);
-    std::vector<cv::Point> outline;
-    for (const auto& corner : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1),
-                               Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)})
-      outline.push_back(
-          view.to_px(centre + roll * Eigen::Vector2d(corner.x() * 0.5 * target.board_width,
-                                                     corner.y() * 0.5 * target.board_height)));
-    cv::polylines(panel, outline, true, kOutline, 1, cv::LINE_AA);
+// The board the circles imply: outline and holes, centred and rolled as found.
+void draw_implied_board(cv::Mat& panel, const View& view, const PlaneFrame& frame,
+                        const CircleFinder::Result& circles, const Target& target) {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const auto& c : circles.centers) centre += frame.to_plane(c) / 4.0;
+  const double a = circles.pattern_angle;
+  const Eigen::Rotation2Dd roll(a);
+  std::vector<cv::Point> outline;
+  for (const auto& corner : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1),
+                             Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)})
+    outline.push_back(
+        view.to_px(centre + roll * Eigen::Vector2d(corner.x() * 0.5 * target.board_width,
+                                                   corner.y() * 0.5 * target.board_height)));
+  cv::polylines(panel, outline, true, kOutline, 1, cv::LINE_AA);
+}
+
+// The edge points, coloured by ring.
+void draw_discontinuities(cv::Mat& panel, const View& view, const PlaneFrame& frame,
+                          const DiscontinuityFilter::Result& discontinuities) {
+  for (std::size_t i = 0; i < discontinuities.edges.size(); ++i) {
+    const Eigen::Vector2d q = frame.to_plane(discontinuities.edges[i]);
+    const int ring = i < discontinuities.rings.size() ? discontinuities.rings[i] : 0;
+    if (view.inside(q))
+      cv::circle(panel, view.to_px(q), 4, ring_colour(ring), cv::FILLED, cv::LINE_AA);
   }
+}
 
-  if (in.discontinuities)
-    for (std::size_t i = 0; i < in.discontinuities->edges.size(); ++i) {
-      const Eigen::Vector2d q = frame.to_plane(in.discontinuities->edges[i]);
-      const int ring = i < in.discontinuities->rings.size() ? in.discontinuities->rings[i] : 0;
-      if (view.inside(q))
-        cv::circle(panel, view.to_px(q), 4, ring_colour(ring), cv::FILLED, cv::LINE_AA);
-    }
-
-  if (in.circles) {
-    const auto& r = *in.circles;
-    for (std::size_t i = 0; i < r.candidates.size(); ++i) {
-      const Eigen::Vector2d q = frame.to_plane(r.candidates[i].center);
-      if (!view.inside(q)) continue;
-      const int radius = static_cast<int>(std::lround(r.candidates[i].radius * view.scale));
-      cv::circle(panel, view.to_px(q), radius, kCandidate, 1, cv::LINE_AA);
-      text(panel, "#" + std::to_string(i), view.to_px(q) + cv::Point(radius / 2, radius + 14),
-           kCandidate, 0.4, 1);
-    }
+// Every circle candidate, numbered.
+void draw_circle_candidates(cv::Mat& panel, const View& view, const PlaneFrame& frame,
+                            const CircleFinder::Result& circles) {
+  for (std::size_t i = 0; i < circles.candidates.size(); ++i) {
+    const Eigen::Vector2d q = frame.to_plane(circles.candidates[i].center);
+    if (!view.inside(q)) continue;
+    const int radius = static_cast<int>(std::lround(circles.candidates[i].radius * view.scale));
+    cv::circle(panel, view.to_px(q), radius, kCandidate, 1, cv::LINE_AA);
+    text(panel, "#" + std::to_string(i), view.to_px(q) + cv::Point(radius / 2, radius + 14),
+         kCandidate, 0.4, 1);
   }
-  if (in.report.found)
-    for (int h = 0; h < 4; ++h) {
-      const cv::Point c = view.to_px(frame.to_plane(in.report.centers[h]));
-      const int radius = static_cast<int>(std::lround(target.hole_radius * view.scale));
-      cv::circle(panel, c, radius, kHole, 2, cv::LINE_AA);
-      draw_cross(panel, c, 6, kHole, 2);
-      text(panel, hole_name(static_cast<Hole>(h)), c + cv::Point(-10, -radius - 6), kHole, 0.6, 2);
-    }
+}
+
+// The four labelled holes of the branch's report.
+void draw_found_holes(cv::Mat& panel, const View& view, const PlaneFrame& frame, const BranchReport& report,
+                      const Target& target) {
+  for (int h = 0; h < 4; ++h) {
+    const cv::Point c = view.to_px(frame.to_plane(report.centers[h]));
+    const int radius = static_cast<int>(std::lround(target.hole_radius * view.scale));
+    cv::circle(panel, c, radius, kHole, 2, cv::LINE_AA);
+    draw_cross(panel, c, 6, kHole, 2);
+    text(panel, hole_name(static_cast<Hole>(h)), c + cv::Point(-10, -radius - 6), kHole, 0.6, 2);
+  }
+}
+
+// The board plane seen face-on from the sensor.
+cv::Mat board_plane_panel(const LidarInspection& in, const Target& target, int size_px) {
+  if (!in.plane || in.candidate < 0) return no_board_panel(in, size_px);
+  const PlaneCandidate& plane = in.plane->candidates[in.candidate];
+  const auto frame = detail::PlaneFrame::make(plane.plane, Eigen::Vector3d::UnitZ(),
+                                              detail::centroid(in.cloud.points, plane.inliers));
+  const double half_w = 0.5 * target.board_width + 0.5, half_h = 0.5 * target.board_height + 0.5;
+  const View view = View::fit({-half_w, -half_h}, {half_w, half_h}, size_px);
+  cv::Mat panel(std::max(view.height, size_px), view.width, CV_8UC3, cv::Scalar(20, 20, 20));
+
+  draw_plane_crossings(panel, view, frame, in, plane);
+  if (in.circles && in.circles->found) draw_implied_board(panel, view, frame, *in.circles, target);
+  if (in.discontinuities) draw_discontinuities(panel, view, frame, *in.discontinuities);
+  if (in.circles) draw_circle_candidates(panel, view, frame, *in.circles);
+  if (in.report.found) draw_found_holes(panel, view, frame, in.report, target);
   text(panel, "in the board plane, seen from the lidar (u right, v up)", {8, 18}, kText, 0.5, 1);
   scale_bar(panel, view, 0.5, "0.5 m");
   return panel;

@@ -87,17 +87,10 @@ Image overlay_image(const io::Dataset& dataset, const Calibrator& calibrator, co
                              SceneObserver(calibrator.params().observer), caption);
 }
 
-int run_calibrate(const CalibrateOptions& options) {
-  const auto dataset = io::Dataset::open(options.dataset);
-  for (const std::string& warning : dataset.warnings())
-    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
-  const Calibrator::Params params = options.params_file.empty()
-                                        ? Calibrator::Params::preset(options.preset)
-                                        : io::read_calibrator_params(options.params_file);
-  Calibrator calibrator(dataset.cameras(), dataset.target(), params);
-
-  const std::size_t count =
-      options.frames > 0 ? std::min<std::size_t>(options.frames, dataset.size()) : dataset.size();
+/// Streams the first `count` frames into the calibrator; returns the last
+/// one (the overlay's fallback). Warns once about sweeps whose rings had to
+/// be recovered and look doubtful.
+io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::size_t count, bool verbose) {
   ProgressBar progress("calibrate", count);
   io::Frame last_frame;
   std::size_t doubtful_rings = 0;
@@ -109,7 +102,7 @@ int run_calibrate(const CalibrateOptions& options) {
       if (doubtful_rings++ == 0) first_doubt = frame.stem + ": " + frame.ring_recovery->summary();
     }
     const FrameReport report = calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
-    if (options.verbose) print_frame_failure(report);
+    if (verbose) print_frame_failure(report);
     progress.update(i + 1);
     last_frame = std::move(frame);
   }
@@ -117,23 +110,59 @@ int run_calibrate(const CalibrateOptions& options) {
   if (doubtful_rings > 0)
     std::fprintf(stderr, "l2s: warning: %zu of %zu sweeps have no ring field and a doubtful or no ring structure (first %s)\n",
                  doubtful_rings, count, first_doubt.c_str());
+  return last_frame;
+}
 
-  const Calibrator::Result result = calibrator.result();
+void print_counts(const Calibrator::Result& result) {
   std::printf("frames    %d: lidar found the board in %d, camera in %d\n", result.frames_added,
               result.lidar_frames, result.camera_frames);
   std::printf("time      %.1f ms/frame lidar, %.1f ms/frame camera\n",
               result.lidar_ms / std::max(1, result.frames_added),
               result.camera_ms / std::max(1, result.frames_added));
+}
+
+/// Why the calibration failed. Without -v the user still needs the first
+/// reason per side to act on.
+void print_calibration_failure(const Calibrator::Result& result, bool verbose) {
+  if (!verbose) {
+    for (const auto& frame : result.frames)
+      if (!frame.used()) {
+        print_frame_failure(frame);
+        break;
+      }
+  }
+  std::fprintf(stderr, "l2s: calibration failed: %s\n", result.reason.c_str());
+}
+
+/// The estimate, its residual and check, and its error when the dataset has the truth.
+void print_estimate(const io::Dataset& dataset, const Calibrator::Result& result) {
+  print_pose("estimate", result.T_lidar_camera);
+  std::printf("residual  rms %.2f mm over the four hole centres\n", result.registration.rms * 1e3);
+  if (result.checked) print_quality(result);
+  if (const auto truth = dataset.ground_truth()) {
+    print_pose("truth", *truth);
+    const PoseError error = pose_error(result.T_lidar_camera, *truth);
+    std::printf("error     e_t = %.1f mm, e_r = %.3f deg\n", error.translation * 1e3,
+                error.rotation * 180.0 / M_PI);
+  }
+}
+
+int run_calibrate(const CalibrateOptions& options) {
+  const auto dataset = io::Dataset::open(options.dataset);
+  for (const std::string& warning : dataset.warnings())
+    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
+  const Calibrator::Params params = options.params_file.empty()
+                                        ? Calibrator::Params::preset(options.preset)
+                                        : io::read_calibrator_params(options.params_file);
+  Calibrator calibrator(dataset.cameras(), dataset.target(), params);
+
+  const std::size_t count =
+      options.frames > 0 ? std::min<std::size_t>(options.frames, dataset.size()) : dataset.size();
+  const io::Frame last_frame = add_frames(dataset, calibrator, count, options.verbose);
+  const Calibrator::Result result = calibrator.result();
+  print_counts(result);
   if (!result.found) {
-    if (!options.verbose) {
-      // Without -v the user still needs the first reason per side to act on.
-      for (const auto& frame : result.frames)
-        if (!frame.used()) {
-          print_frame_failure(frame);
-          break;
-        }
-    }
-    std::fprintf(stderr, "l2s: calibration failed: %s\n", result.reason.c_str());
+    print_calibration_failure(result, options.verbose);
     return 1;
   }
 
@@ -148,16 +177,7 @@ int run_calibrate(const CalibrateOptions& options) {
   if (!failed || options.keep_failed)
     io::write_calibration_result(output, result, options.dataset,
                                  options.params_file.empty() ? options.preset : options.params_file);
-
-  print_pose("estimate", result.T_lidar_camera);
-  std::printf("residual  rms %.2f mm over the four hole centres\n", result.registration.rms * 1e3);
-  if (result.checked) print_quality(result);
-  if (const auto truth = dataset.ground_truth()) {
-    print_pose("truth", *truth);
-    const PoseError error = pose_error(result.T_lidar_camera, *truth);
-    std::printf("error     e_t = %.1f mm, e_r = %.3f deg\n", error.translation * 1e3,
-                error.rotation * 180.0 / M_PI);
-  }
+  print_estimate(dataset, result);
   if (failed) {
     std::fprintf(stderr, "l2s: the scene check FAILED this calibration:\n");
     for (const auto& reason : result.quality.reasons) std::fprintf(stderr, "  - %s\n", reason.c_str());

@@ -117,25 +117,18 @@ void write_text(const fs::path& path, const std::string& text) {
   fs::rename(temporary, path);
 }
 
-int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given) {
-  const sim::SuiteOptions options = suite_options(o, repeats_given, count_given);
-  const std::vector<sim::SuiteGroup> plan = sim::make_suite_plan(options);
-  fs::create_directories(o.out_dir);
-  const std::string csv_path = (fs::path(o.out_dir) / "results.csv").string();
-  const sim::SuiteThresholds thresholds =
-      o.thresholds.empty() ? sim::SuiteThresholds{} : sim::read_suite_thresholds(o.thresholds);
+// A group with the cells a resumed run still has to do.
+struct Pending {
+  const sim::SuiteGroup* group;
+  std::vector<sim::SuiteCell> cells;
+};
 
-  // Resume: keep the rows of finished cells, run the rest.
-  const sim::SuiteCsv earlier = sim::read_suite_csv(csv_path);
-  const sim::SuiteResume resume = sim::resume_suite(plan, earlier.rows);
-  if (!fs::exists(csv_path) || earlier.trimmed || resume.dropped > 0)
-    sim::write_suite_csv(csv_path, resume.kept);
-  struct Pending {
-    const sim::SuiteGroup* group;
-    std::vector<sim::SuiteCell> cells;
-  };
+// The groups with cells not yet in results.csv, and the frames they will simulate.
+std::vector<Pending> pending_groups(const std::vector<sim::SuiteGroup>& plan, const sim::SuiteResume& resume,
+                                   std::size_t& total_frames, std::size_t& cells_total) {
   std::vector<Pending> pending;
-  std::size_t total_frames = 0, cells_total = 0;
+  total_frames = 0;
+  cells_total = 0;
   for (const auto& group : plan) {
     Pending p{&group, {}};
     for (const auto& cell : group.cells)
@@ -145,18 +138,15 @@ int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given
     total_frames += group.frames;
     pending.push_back(std::move(p));
   }
-  if (!resume.done.empty())
-    std::printf("resume    %zu of %zu cells already in %s%s\n", resume.done.size(), cells_total,
-                csv_path.c_str(), earlier.trimmed ? " (an interrupted last line was dropped)" : "");
+  return pending;
+}
 
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = std::max(1, std::min<int>(o.jobs > 0 ? o.jobs : static_cast<int>(hardware),
-                                             static_cast<int>(std::max<std::size_t>(pending.size(), 1))));
-  // Cores not used by group workers go to the simulator's own threads.
-  const int sim_threads = std::max(1, static_cast<int>(hardware) / jobs);
-
-  std::ofstream csv(csv_path, std::ios::app | std::ios::binary);
-  if (!csv) throw FileError(csv_path, "cannot open for appending");
+// Runs the pending groups on `jobs` worker threads, appending each finished
+// group's rows to `csv` at once (so an interrupted run resumes after it).
+// Rethrows a worker's exception; returns the groups finished (fewer than
+// pending.size() when interrupted).
+std::size_t run_groups(const std::vector<Pending>& pending, int jobs, int sim_threads, std::size_t total_frames,
+                       std::ofstream& csv) {
   std::mutex mutex;
   std::exception_ptr failure;
   std::atomic<std::size_t> next{0};
@@ -195,14 +185,13 @@ int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given
   std::signal(SIGINT, SIG_DFL);
   csv.close();
   if (failure) std::rethrow_exception(failure);
-  if (g_interrupted) {
-    std::fprintf(stderr, "\nl2s suite: stopped after %zu of %zu groups; run the same command again to resume\n",
-                 groups_done, pending.size());
-    return 1;
-  }
-  if (total_frames > 0) progress.finish();
+  if (!g_interrupted && total_frames > 0) progress.finish();
+  return groups_done;
+}
 
-  // The final file in reading order, whatever the number of jobs.
+// The final files: results.csv in reading order (whatever the number of
+// jobs), summary.md and the plots. Returns the sorted rows.
+std::vector<sim::SuiteRow> write_results(const SuiteCommandOptions& o, const std::string& csv_path) {
   std::vector<sim::SuiteRow> rows = sim::read_suite_csv(csv_path).rows;
   sim::sort_suite_rows(rows);
   sim::write_suite_csv(csv_path, rows);
@@ -211,8 +200,12 @@ int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given
   std::printf("wrote     %s\n          %s\n", csv_path.c_str(), (fs::path(o.out_dir) / "summary.md").c_str());
   if (o.quick) std::printf("\n%s\n", summary.c_str());
   if (!o.no_plots) make_plots(o.out_dir);
+  return rows;
+}
 
-  if (o.thresholds.empty()) return 0;
+// --thresholds: the rows of the planned cells against the limits; the exit code.
+int check_thresholds(const std::vector<sim::SuiteGroup>& plan, const std::vector<sim::SuiteRow>& rows,
+                     const sim::SuiteThresholds& thresholds, const std::string& thresholds_path) {
   std::set<std::string> planned;
   for (const auto& group : plan)
     for (const auto& cell : group.cells) planned.insert(cell.key());
@@ -223,11 +216,49 @@ int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given
   for (const auto& violation : violations) std::fprintf(stderr, "l2s suite: threshold: %s\n", violation.c_str());
   if (!violations.empty()) {
     std::fprintf(stderr, "l2s suite: %zu threshold violation(s) (limits in %s)\n", violations.size(),
-                 o.thresholds.c_str());
+                 thresholds_path.c_str());
     return 1;
   }
-  std::printf("thresholds passed (%s)\n", o.thresholds.c_str());
+  std::printf("thresholds passed (%s)\n", thresholds_path.c_str());
   return 0;
+}
+
+int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given) {
+  const sim::SuiteOptions options = suite_options(o, repeats_given, count_given);
+  const std::vector<sim::SuiteGroup> plan = sim::make_suite_plan(options);
+  fs::create_directories(o.out_dir);
+  const std::string csv_path = (fs::path(o.out_dir) / "results.csv").string();
+  const sim::SuiteThresholds thresholds =
+      o.thresholds.empty() ? sim::SuiteThresholds{} : sim::read_suite_thresholds(o.thresholds);
+
+  // Resume: keep the rows of finished cells, run the rest.
+  const sim::SuiteCsv earlier = sim::read_suite_csv(csv_path);
+  const sim::SuiteResume resume = sim::resume_suite(plan, earlier.rows);
+  if (!fs::exists(csv_path) || earlier.trimmed || resume.dropped > 0)
+    sim::write_suite_csv(csv_path, resume.kept);
+  std::size_t total_frames = 0, cells_total = 0;
+  const std::vector<Pending> pending = pending_groups(plan, resume, total_frames, cells_total);
+  if (!resume.done.empty())
+    std::printf("resume    %zu of %zu cells already in %s%s\n", resume.done.size(), cells_total,
+                csv_path.c_str(), earlier.trimmed ? " (an interrupted last line was dropped)" : "");
+
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = std::max(1, std::min<int>(o.jobs > 0 ? o.jobs : static_cast<int>(hardware),
+                                             static_cast<int>(std::max<std::size_t>(pending.size(), 1))));
+  // Cores not used by group workers go to the simulator's own threads.
+  const int sim_threads = std::max(1, static_cast<int>(hardware) / jobs);
+  std::ofstream csv(csv_path, std::ios::app | std::ios::binary);
+  if (!csv) throw FileError(csv_path, "cannot open for appending");
+  const std::size_t groups_done = run_groups(pending, jobs, sim_threads, total_frames, csv);
+  if (g_interrupted) {
+    std::fprintf(stderr, "\nl2s suite: stopped after %zu of %zu groups; run the same command again to resume\n",
+                 groups_done, pending.size());
+    return 1;
+  }
+
+  const std::vector<sim::SuiteRow> rows = write_results(o, csv_path);
+  if (o.thresholds.empty()) return 0;
+  return check_thresholds(plan, rows, thresholds, o.thresholds);
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 
 #include <l2s/types.hpp>
 
-#include "io/laser_line.hpp"
+#include "lidar/rings/laser_line.hpp"
 
 #include <cmath>
 #include <vector>

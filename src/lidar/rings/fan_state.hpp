@@ -3,7 +3,7 @@
 // the returns it was fitted to, the prior on a laser's offset, the ridge fit
 // under that prior, and what the lines say about one return.
 
-#include "io/laser_fan.hpp"
+#include "lidar/rings/laser_fan.hpp"
 
 #include <array>
 #include <cstddef>

@@ -10,9 +10,9 @@
 
 #include <l2s/error.hpp>
 
-#include "io/laser_fan.hpp"
-#include "io/ring_model_input.hpp"
-#include "io/ring_report.hpp"
+#include "lidar/rings/laser_fan.hpp"
+#include "lidar/rings/ring_model_input.hpp"
+#include "lidar/rings/ring_report.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // Finding the laser line nearest to a return, the search that ring recovery
 // runs once per return (and several times per return of its fit sample).
 
-#include "io/laser_line.hpp"
+#include "lidar/rings/laser_line.hpp"
 
 #include <cstdint>
 #include <vector>

@@ -4,7 +4,7 @@
 
 #include <l2s/io/ring_recovery.hpp>
 
-#include "io/laser_line.hpp"
+#include "lidar/rings/laser_line.hpp"
 
 #include <vector>
 

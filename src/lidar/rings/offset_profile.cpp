@@ -1,5 +1,5 @@
 // Offset profile by histogram sharpness (see offset_profile.hpp).
-#include "io/offset_profile.hpp"
+#include "lidar/rings/offset_profile.hpp"
 
 #include <algorithm>
 #include <cmath>

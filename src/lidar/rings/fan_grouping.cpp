@@ -1,5 +1,5 @@
 // Grouping returns into lasers (see fan_grouping.hpp).
-#include "io/fan_grouping.hpp"
+#include "lidar/rings/fan_grouping.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // prior, merge duplicates, dissolve strays and lines that cross, and give all
 // returns again to the lines.
 
-#include "io/fan_state.hpp"
+#include "lidar/rings/fan_state.hpp"
 
 #include <cstddef>
 #include <vector>

@@ -3,7 +3,7 @@
 // (and splitting groups where two lasers touch), for new lines and for lines
 // that took two lasers' returns.
 
-#include "io/fan_state.hpp"
+#include "lidar/rings/fan_state.hpp"
 
 #include <cstddef>
 #include <utility>

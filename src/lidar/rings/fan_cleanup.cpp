@@ -1,5 +1,5 @@
 // Tidying the grown fan (see fan_cleanup.hpp).
-#include "io/fan_cleanup.hpp"
+#include "lidar/rings/fan_cleanup.hpp"
 
 #include <algorithm>
 #include <cmath>

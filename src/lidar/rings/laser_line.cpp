@@ -1,5 +1,5 @@
 // Ridge least squares for one laser's line v = t + h u (see laser_line.hpp).
-#include "io/laser_line.hpp"
+#include "lidar/rings/laser_line.hpp"
 
 #include <Eigen/LU>
 

@@ -2,7 +2,7 @@
 // be ok, a result far off must never be. The classes are those of issue 11's
 // acceptance (within 2 cm / 0.5 deg; beyond 10 cm or 2 deg).
 
-#include "sim/suite_check_summary.hpp"
+#include "suite/suite_check_summary.hpp"
 
 #include <array>
 #include <cmath>

@@ -3,7 +3,7 @@
 // median and 95th percentile of the errors) and a list of the failures, each
 // with its scene and the stage and reason the Calibrator gave.
 
-#include "sim/suite_scenes_summary.hpp"
+#include "suite/suite_scenes_summary.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // Nearest-line search (see line_index.hpp). Predictions t + h u ascend with t
 // at any u unless lines cross, which real lasers do only a few centimetres
 // from the sensor; the neighbours checked around a candidate absorb that.
-#include "io/line_index.hpp"
+#include "lidar/rings/line_index.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // their returns tight around each laser's model compared with the spacing of
 // the lasers (fill ~0.1); a non-repetitive scan (Livox) spreads returns evenly
 // over the elevations (fill ~0.5, or one "ring" degrees wide).
-#include "io/ring_report.hpp"
+#include "lidar/rings/ring_report.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,9 +15,9 @@
 //     duplicates, dissolve strays and lines that cross, reassign all returns.
 // assign_all then gives every return of the sweep its nearest line.
 
-#include "io/laser_line.hpp"
-#include "io/line_index.hpp"
-#include "io/offset_profile.hpp"
+#include "lidar/rings/laser_line.hpp"
+#include "lidar/rings/line_index.hpp"
+#include "lidar/rings/offset_profile.hpp"
 
 #include <cstddef>
 #include <vector>

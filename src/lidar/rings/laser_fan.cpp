@@ -1,10 +1,10 @@
 // Fitting the laser fan of a spinning lidar (see laser_fan.hpp): the growth
 // from far to near, and the assignment of a whole sweep.
-#include "io/laser_fan.hpp"
+#include "lidar/rings/laser_fan.hpp"
 
-#include "io/fan_cleanup.hpp"
-#include "io/fan_grouping.hpp"
-#include "io/fan_state.hpp"
+#include "lidar/rings/fan_cleanup.hpp"
+#include "lidar/rings/fan_grouping.hpp"
+#include "lidar/rings/fan_state.hpp"
 
 #include <algorithm>
 #include <limits>

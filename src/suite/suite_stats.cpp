@@ -3,8 +3,8 @@
 
 #include <l2s/sim/suite_results.hpp>
 
-#include "sim/suite_check_summary.hpp"
-#include "sim/suite_scenes_summary.hpp"
+#include "suite/suite_check_summary.hpp"
+#include "suite/suite_scenes_summary.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 // only when h is right; the sharpest histogram wins, first for the whole fan,
 // then band by band of elevation.
 
-#include "io/laser_line.hpp"
+#include "lidar/rings/laser_line.hpp"
 
 #include <utility>
 #include <vector>

@@ -1,5 +1,5 @@
 // The shared vocabulary of the fan fit (see fan_state.hpp).
-#include "io/fan_state.hpp"
+#include "lidar/rings/fan_state.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,9 +6,9 @@
 #include <l2s/error.hpp>
 #include <l2s/io/ring_recovery.hpp>
 
-#include "io/line_index.hpp"
-#include "io/ring_model_input.hpp"
-#include "io/ring_report.hpp"
+#include "lidar/rings/line_index.hpp"
+#include "lidar/rings/ring_model_input.hpp"
+#include "lidar/rings/ring_report.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,179 @@
+// One group of suite cells: the frames are simulated once, the stereo branch
+// runs once per preset and frame (it does not depend on the lidar), and every
+// cell's Calibrator gets its own lidar sweep with the shared camera report.
+
+#include <l2s/sim/suite.hpp>
+
+#include <l2s/calibrator.hpp>
+#include <l2s/error.hpp>
+#include <l2s/metrics.hpp>
+#include <l2s/sim/random_scene.hpp>
+#include <l2s/sim/simulation.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+
+namespace l2s::sim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
+                  const Eigen::Isometry3d& T_true, double wall_s, const std::string& scene) {
+  SuiteRow row = SuiteRow::of(cell);
+  row.scene = scene;
+  if (result.checked) row.verdict = verdict_name(result.quality.verdict);
+  row.frames = result.frames_added;
+  row.success = result.found;
+  row.reason = result.reason;
+  row.lidar_frames = result.lidar_frames;
+  row.camera_frames = result.camera_frames;
+  row.wall_s = wall_s;
+  if (result.found) {
+    const PoseError error = pose_error(result.T_lidar_camera, T_true);
+    row.e_t = error.translation;
+    row.e_r = error.rotation;
+  }
+  return row;
+}
+
+// A cell in progress: its calibrator and the time spent on it so far.
+struct Run {
+  const SuiteCell* cell = nullptr;
+  const DatasetSimulator* simulator = nullptr;
+  std::optional<Calibrator> calibrator;
+  double seconds = 0.0;
+};
+
+// The group's simulated data: one simulator per lidar, or why it could not be built.
+struct GroupData {
+  std::map<std::string, std::unique_ptr<DatasetSimulator>> simulators;
+  std::map<std::string, std::string> failures;  // lidar -> reason
+  const DatasetSimulator* source = nullptr;     // renders the shared frames (images)
+  std::string scene;                            // what a random scene drew
+};
+
+// One simulator per lidar; the first that places the board fixes the pose
+// for the others, so they render the same scene (and the same images).
+GroupData simulate_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells, int threads) {
+  GroupData data;
+  for (const auto& cell : cells) {
+    if (data.simulators.count(cell.lidar) || data.failures.count(cell.lidar)) continue;
+    if (group.experiment == "scenes") {
+      try {
+        RandomScene drawn = make_random_scene(group.seed, group.frames, group.noise_k, threads);
+        data.scene = drawn.summary;
+        data.source = drawn.simulator.get();
+        data.simulators[cell.lidar] = std::move(drawn.simulator);
+      } catch (const Error& error) {
+        data.failures[cell.lidar] = std::string("simulation: ") + error.what();
+      }
+      continue;
+    }
+    SimulationConfig config = SimulationConfig::paper(group.setting, cell.lidar);
+    config.frames = group.frames;
+    config.noise_factor = group.noise_k;
+    config.seed = group.seed;
+    config.threads = threads;
+    if (data.source) config.board_pose = data.source->board_pose();
+    try {
+      auto simulator = std::make_unique<DatasetSimulator>(config);
+      if (!data.source) data.source = simulator.get();
+      data.simulators[cell.lidar] = std::move(simulator);
+    } catch (const Error& error) {
+      data.failures[cell.lidar] = std::string("simulation: ") + error.what();
+    }
+  }
+  return data;
+}
+
+// A calibrator for every cell that has data.
+std::vector<Run> start_runs(const std::vector<SuiteCell>& cells, const GroupData& data) {
+  std::vector<Run> runs;
+  for (const auto& cell : cells) {
+    if (data.failures.count(cell.lidar)) continue;
+    const DatasetSimulator& simulator = *data.simulators.at(cell.lidar);
+    Run run;
+    run.cell = &cell;
+    run.simulator = &simulator;
+    run.calibrator.emplace(simulator.cameras(), simulator.config().target,
+                           Calibrator::Params::preset(cell.preset));
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+using Evaluations = std::map<const SuiteCell*, std::vector<SuiteRow>>;
+
+// Frame i into every run, evaluating the runs whose cell asks for it.
+void add_frame(int i, const SuiteGroup& group, const GroupData& data, std::vector<Run>& runs,
+               Evaluations& evaluations) {
+  SimulatedFrame frame = data.source->frame(i);
+  std::map<std::string, LidarCloud> sweeps;
+  for (const auto& [lidar, simulator] : data.simulators)
+    sweeps[lidar] = simulator.get() == data.source ? std::move(frame.lidar) : simulator->sweep(i);
+  // The camera branch once per preset: its parameters are the same for every lidar.
+  std::map<std::string, BranchReport> camera;
+  for (const Run& run : runs)
+    if (!camera.count(run.cell->preset))
+      camera[run.cell->preset] = run.calibrator->camera_branch(frame.left, frame.right);
+
+  const std::string id = std::to_string(i);
+  for (Run& run : runs) {
+    const auto start = Clock::now();
+    run.calibrator->add(sweeps.at(run.cell->lidar), camera.at(run.cell->preset), id);
+    const bool evaluated = run.cell->every_frame || i + 1 == group.frames;
+    std::optional<Calibrator::Result> result;
+    if (evaluated) result = run.calibrator->result();
+    run.seconds += seconds_since(start) + camera.at(run.cell->preset).milliseconds * 1e-3;
+    if (result)
+      evaluations[run.cell].push_back(
+          evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds, data.scene));
+  }
+}
+
+// The rows in the cells' order. A cell without data fails at every frame
+// count it would have had (no data, so no evaluation).
+std::vector<SuiteRow> rows_of(const std::vector<SuiteCell>& cells, const GroupData& data,
+                              Evaluations& evaluations) {
+  std::vector<SuiteRow> rows;
+  for (const auto& cell : cells) {
+    if (const auto failed = data.failures.find(cell.lidar); failed != data.failures.end()) {
+      for (int n = cell.every_frame ? 1 : cell.frames; n <= cell.frames; ++n) {
+        SuiteRow row = SuiteRow::of(cell);
+        row.frames = n;
+        row.reason = failed->second;
+        rows.push_back(row);
+      }
+      continue;
+    }
+    for (auto& row : evaluations[&cell]) rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
+                                      int threads, const std::function<void()>& on_frame) {
+  const GroupData data = simulate_group(group, cells, threads);
+  std::vector<Run> runs = start_runs(cells, data);
+  Evaluations evaluations;
+  for (int i = 0; i < group.frames && data.source; ++i) {
+    add_frame(i, group, data, runs, evaluations);
+    if (on_frame) on_frame();
+  }
+  if (!data.source && on_frame)
+    for (int i = 0; i < group.frames; ++i) on_frame();
+  return rows_of(cells, data, evaluations);
+}
+
+}  // namespace l2s::sim
