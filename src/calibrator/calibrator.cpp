@@ -63,8 +63,8 @@ struct Calibrator::Impl {
   // one, when ring_free_frames sweeps of the static board are together.
   // `trace` receives the stages of the detection, when one ran (for a
   // ring-free lidar: of the accumulated window).
-  BranchReport lidar_branch(const LidarCloud& sweep, LidarInspection* trace) {
-    if (!detail::is_ring_free(sweep))
+  BranchReport lidar_branch(const LidarCloud& sweep, bool ring_free, LidarInspection* trace) {
+    if (!ring_free)
       return timed([&] { return detail::run_lidar_branch(sweep, target, params, trace); });
     const auto start = std::chrono::steady_clock::now();
     ring_free_window.push_back(detail::accumulate_ring_free({&sweep}, params));
@@ -206,7 +206,8 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   // either way); the check observes the frames it keeps from them.
   LidarInspection lidar_trace;
   CameraInspection camera_trace;
-  const auto lidar_branch = [&] { return impl.lidar_branch(lidar, &lidar_trace); };
+  const bool ring_free = detail::is_ring_free(lidar);
+  const auto lidar_branch = [&] { return impl.lidar_branch(lidar, ring_free, &lidar_trace); };
   const auto camera_branch = [&] {
     return timed([&] {
       return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &camera_trace);
@@ -225,7 +226,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   }
   std::shared_ptr<const CameraObservation> camera_observation;  // made once, when asked for
   FrameReport recorded = impl_->record(
-      std::move(report), id, detail::is_ring_free(lidar),
+      std::move(report), id, ring_free,
       [&] { return observe_lidar(lidar, lidar_trace, true, impl.observer); },
       [&] {
         if (!camera_observation)
@@ -253,11 +254,12 @@ BranchReport Calibrator::camera_branch(const Image& left, const Image& right) co
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
   LidarInspection lidar_trace;
-  report.lidar = impl_->lidar_branch(lidar, &lidar_trace);
+  const bool ring_free = detail::is_ring_free(lidar);
+  report.lidar = impl_->lidar_branch(lidar, ring_free, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
   return impl_->record(
-      std::move(report), id, detail::is_ring_free(lidar),
+      std::move(report), id, ring_free,
       [&] { return observe_lidar(lidar, lidar_trace, true, impl_->observer); },
       [&] {
         return camera.observation ? camera.observation
