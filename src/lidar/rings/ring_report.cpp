@@ -13,7 +13,7 @@ namespace l2s::io {
 namespace {
 
 constexpr double kDeg = 180.0 / 3.14159265358979;
-constexpr double kRingFreeContrast = 2.0;  // even spread: ~1
+constexpr double kRingFreeContrast = 3.0;  // even spread: ~1 (an Avia window measured up to 2.2)
 constexpr double kDoubtContrast = 5.0;     // noisy HDL-64E (0.05 deg on 0.33): ~40
 constexpr double kWideRing = 0.5 / kDeg;   // [rad] a single "ring" wider than this is no scan line
 constexpr double kSparseRing = 0.02;       // a ring with < 2 % of the median returns
