@@ -5,6 +5,7 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <gtest/gtest.h>
@@ -137,6 +138,26 @@ TEST(CameraDetection, PiecesOfABoardAlreadyFoundAreNotTriedAgain) {
   }
   EXPECT_EQ(matched, 1) << describe(in, params, simulator.cameras());
   EXPECT_GE(duplicates, 1) << describe(in, params, simulator.cameras());
+}
+
+// When no hypothesis is verified, `l2s detect` shows the most board-like one
+// as far as it went: with the rim refinement whose result rejected it, not
+// "refinement off" and a board pose at the origin.
+TEST(CameraDetection, ARejectedHypothesisIsShownWithItsRefinement) {
+  // A plain board before a plain wall of nearly its gray, 95 deg lens, 800x600.
+  const sim::RandomScene scene = sim::make_random_scene(2010363691, 1, 1.0, 1);
+  const auto params = Calibrator::Params::preset("default");
+  const auto frame = scene.simulator->frame(0);
+  const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
+                                             scene.simulator->config().target, params);
+  // When the branch learns to verify this board, pick a frame it still rejects.
+  ASSERT_FALSE(in.report.found) << "the board is now verified in this frame";
+  ASSERT_FALSE(in.hypotheses.empty());
+  EXPECT_EQ(in.hypotheses.front().stage, "verify") << in.hypotheses.front().reason;
+  ASSERT_TRUE(in.refined.has_value()) << describe(in, params, scene.simulator->cameras());
+  ASSERT_TRUE(in.T_camera_board_initial.has_value());
+  EXPECT_GT(in.T_camera_board_initial->translation().norm(), 1.0);
+  EXPECT_EQ(describe(in, params, scene.simulator->cameras()).find("refine_camera_pose: false"), std::string::npos);
 }
 
 }  // namespace

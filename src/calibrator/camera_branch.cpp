@@ -91,6 +91,9 @@ class CameraHypothesisTester {
                             .refine(f_.left, f_.right, f_.cameras, f_.target, attempt.T_camera_board);
       hypothesis.evidence.rim_support = attempt.refined->edge_fraction;
     }
+    // The first hypothesis is what `l2s detect` shows when none is verified:
+    // with its refinement, which is what rejected it.
+    if (first_->candidate == attempt.candidate) first_ = attempt;
     return attempt;
   }
 
