@@ -130,6 +130,22 @@ TEST(CircleFinder, GradientVotesStayBoundedOnAWallWideSpreadOfEdges) {
                                                scene.target, gradients));
 }
 
+// The contract: bad data is a reason in the result; only bad arguments throw.
+TEST(CircleFinder, NonFinitePlaneGivesReasonAndBadArgumentsThrow) {
+  const Scene scene;
+  const auto edges = test::exact_hole_edges(scene, test::vlp16());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  CircleFinder::Result result;
+  EXPECT_NO_THROW(result = CircleFinder().find(edges, Plane(Eigen::Vector3d(nan, 0.0, 1.0), 3.0),
+                                               Eigen::Vector3d::UnitZ(), scene.target));
+  EXPECT_FALSE(result.found);
+  EXPECT_NE(result.reason.find("not finite"), std::string::npos) << result.reason;
+  EXPECT_THROW(CircleFinder().find(edges, scene.visible_plane(), Eigen::Vector3d::Zero(), scene.target), ParamError);
+  EXPECT_THROW(CircleFinder().find(edges, scene.visible_plane(), Eigen::Vector3d::UnitZ(), scene.target,
+                                   std::vector<Eigen::Vector3d>(edges.size() + 1, Eigen::Vector3d::UnitY())),
+               ParamError);
+}
+
 TEST(CircleFinder, WrongTargetGivesReason) {
   const Scene scene;  // default board, but the paper's square pattern is asked for
   const auto edges = test::exact_hole_edges(scene, test::vlp16());

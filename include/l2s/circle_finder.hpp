@@ -64,7 +64,10 @@ class L2S_EXPORT CircleFinder {
   /// `gradients`: optional, one per edge: the direction (in the plane, sensor
   /// frame) in which the image intensity changes there. With them, circle
   /// candidates come from gradient votes (robust to a textured board),
-  /// otherwise from pairs of points (sparse lidar edges).
+  /// otherwise from pairs of points (sparse lidar edges). Bad data (a plane
+  /// that is not finite, too few edges, non-finite points) is a reason in
+  /// the result; throws ParamError for an invalid target, an `up` that is not
+  /// a finite non-zero vector, or `gradients` of another length than `edges`.
   Result find(const std::vector<Eigen::Vector3d>& edges, const Plane& plane, const Eigen::Vector3d& up,
               const Target& target = Target{}, const std::vector<Eigen::Vector3d>& gradients = {}) const;
   const Params& params() const { return params_; }

@@ -154,10 +154,13 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
                                         const std::vector<Eigen::Vector3d>& gradients) const {
   target.validate();
   if (!up.allFinite() || up.norm() < 1e-9) throw ParamError("up", "must be a finite non-zero vector");
-  if (!plane_in.coeffs().allFinite()) throw Error("CircleFinder: the plane is not finite");
   if (!gradients.empty() && gradients.size() != edges.size())
     throw ParamError("gradients", "must be empty or one per edge point");
   Result result;
+  if (!plane_in.coeffs().allFinite() || plane_in.normal().norm() < 1e-9) {
+    result.reason = "the plane is not finite";  // bad data, like too few edges: a reason, not an exception
+    return result;
+  }
   const Plane plane = detail::facing_origin(plane_in);
   const detail::PlaneAxes axes = detail::plane_axes(plane.normal(), up);
   const Eigen::Vector3d origin = -plane.offset() * plane.normal();
