@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace l2s {
 namespace {
@@ -126,6 +127,21 @@ TEST(DiscontinuityFilter, ReportsMissingRings) {
   const auto result = DiscontinuityFilter().filter(sweep, scene.visible_plane(), {});
   EXPECT_FALSE(result.found);
   EXPECT_NE(result.reason.find("ring"), std::string::npos);
+}
+
+// The contract: bad data is a reason in the result; bad arguments throw ParamError.
+TEST(DiscontinuityFilter, NonFinitePlaneGivesReasonAndBadArgumentsThrow) {
+  const Scene scene;
+  LidarCloud sweep = test::scan(scene, test::vlp16(), 17);
+  const auto inliers = true_board_points(sweep, scene);
+  const Plane nan_plane(Eigen::Vector3d(std::nan(""), 0.0, 1.0), 3.0);
+  DiscontinuityFilter::Result result;
+  EXPECT_NO_THROW(result = DiscontinuityFilter().filter(sweep, nan_plane, inliers));
+  EXPECT_FALSE(result.found);
+  EXPECT_NE(result.reason.find("not finite"), std::string::npos) << result.reason;
+  EXPECT_THROW(DiscontinuityFilter().filter(sweep, scene.visible_plane(), {sweep.size()}), ParamError);
+  sweep.ring.pop_back();
+  EXPECT_THROW(DiscontinuityFilter().filter(sweep, scene.visible_plane(), inliers), ParamError);
 }
 
 TEST(DiscontinuityFilter, RejectsInvalidParamsNamingTheField) {

@@ -77,7 +77,10 @@ class L2S_EXPORT DiscontinuityFilter {
   /// `cloud`: the pass-through-filtered sweep with `ring` filled (any order,
   /// NaN allowed); `plane`: the board plane; `board_inliers`: indices into
   /// `cloud` of the board's points (a PlaneCandidate's inliers); `target`:
-  /// the hole size that bounds a hole crossing.
+  /// the hole size that bounds a hole crossing. A cloud without rings or a
+  /// plane that is not finite is a reason in the result; throws ParamError
+  /// for a ring field of another length than the points or an inlier index
+  /// past the cloud.
   Result filter(const LidarCloud& cloud, const Plane& plane, const std::vector<std::size_t>& board_inliers,
                 const Target& target = Target{}) const;
   const Params& params() const { return params_; }

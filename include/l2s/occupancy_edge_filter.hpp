@@ -48,7 +48,8 @@ class L2S_EXPORT OccupancyEdgeFilter {
 
   /// `points`: the (accumulated) cloud, sensor frame; `plane`: the board
   /// plane; `board_inliers`: indices of the board's points; `up`: the
-  /// sensor's up axis (the occupancy grid is aligned with it).
+  /// sensor's up axis (the occupancy grid is aligned with it). Throws
+  /// ParamError for an inlier index past the points.
   Result filter(const std::vector<Eigen::Vector3d>& points, const Plane& plane,
                 const std::vector<std::size_t>& board_inliers, const Eigen::Vector3d& up,
                 const Target& target = Target{}) const;

@@ -272,11 +272,14 @@ DiscontinuityFilter::Result DiscontinuityFilter::filter(const LidarCloud& cloud,
     result.reason = "the cloud has no ring field (fill it with l2s::io::recover_rings)";
     return result;
   }
-  if (cloud.ring.size() != cloud.size()) throw Error("DiscontinuityFilter: ring and points differ in size");
-  if (!plane.coeffs().allFinite()) throw Error("DiscontinuityFilter: the plane is not finite");
+  if (cloud.ring.size() != cloud.size()) throw ParamError("cloud.ring", "must have one value per point");
+  if (!plane.coeffs().allFinite()) {
+    result.reason = "the plane is not finite";
+    return result;
+  }
   std::vector<char> is_board(cloud.size(), 0);
   for (std::size_t i : board_inliers) {
-    if (i >= cloud.size()) throw Error("DiscontinuityFilter: board inlier index out of range");
+    if (i >= cloud.size()) throw ParamError("board_inliers", "index past the end of the cloud");
     is_board[i] = 1;
   }
 

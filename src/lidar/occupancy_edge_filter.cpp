@@ -163,7 +163,7 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
   Result result;
   std::vector<std::size_t> board;
   for (const std::size_t i : board_inliers) {
-    if (i >= points.size()) throw Error("OccupancyEdgeFilter: board inlier index out of range");
+    if (i >= points.size()) throw ParamError("board_inliers", "index past the end of the points");
     if (points[i].allFinite()) board.push_back(i);
   }
   result.board_points = board.size();
