@@ -61,6 +61,10 @@ class L2S_EXPORT CalibrationCheck {
     double failed_outline_deg = 1.0;        ///< [deg] >= suspect_outline_deg
     double suspect_plane_offset = 0.015;    ///< [m] lidar board returns from the camera's board plane, > 0
     double failed_plane_offset = 0.06;      ///< [m] >= suspect_plane_offset
+    /// The plane offset counts only beyond this disparity error of the stereo
+    /// plane [px]: SGBM's sub-pixel bias moves a far board seen by a short
+    /// baseline by centimetres (0.3 px is 5 cm at 3.9 m with fx B 91 px m), >= 0.
+    double min_plane_offset_px = 0.3;
     double suspect_plane_tilt_deg = 1.0;    ///< [deg] lidar board against the camera's, > 0
     double failed_plane_tilt_deg = 4.0;     ///< [deg] >= suspect_plane_tilt_deg
     double suspect_center_offset = 0.012;   ///< [m] lidar hole centres from the camera's holes, in the board plane (a calibration's own centres agree to a few mm), > 0
@@ -101,6 +105,7 @@ class L2S_EXPORT CalibrationCheck {
     double depth_bias = kNaN;       ///< median (lidar - stereo) / stereo depth of the returns within 20 %: a scale error (target size, baseline) or a shift along the view
     double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this beyond what a disparity bias of one matching sigma can tilt on that surface: a rotation error about the camera's x / y axes, whatever the translation
     double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's stereo board plane (+: in front)
+    double plane_offset_px = kNaN;  ///< [px] that distance as a disparity error of the stereo plane at the board's depth (fx B offset / z^2)
     double plane_spread = kNaN;     ///< [m] robust sigma of those distances
     double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one: the rotation between them, median over frames (per component, so noise averages out)
     double outline_px = kNaN;       ///< [px] median distance, in the image, of lidar board edges from the outline and hole rims

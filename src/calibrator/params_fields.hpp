@@ -203,6 +203,7 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("suspect_outline_deg", p.suspect_outline_deg);
   v.field("failed_outline_deg", p.failed_outline_deg);
   v.field("suspect_plane_offset", p.suspect_plane_offset);
+  v.field("min_plane_offset_px", p.min_plane_offset_px);
   v.field("failed_plane_offset", p.failed_plane_offset);
   v.field("suspect_plane_tilt_deg", p.suspect_plane_tilt_deg);
   v.field("failed_plane_tilt_deg", p.failed_plane_tilt_deg);

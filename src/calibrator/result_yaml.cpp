@@ -90,6 +90,7 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   number("depth_bias", s.depth_bias);
   number("depth_tilt_deg", s.depth_tilt * 180.0 / M_PI);
   number("plane_offset_m", s.plane_offset);
+  number("plane_offset_px", s.plane_offset_px);
   number("plane_spread_m", s.plane_spread);
   number("plane_tilt_deg", s.plane_tilt * 180.0 / M_PI);
   number("outline_px", s.outline_px);

@@ -93,6 +93,7 @@ void CalibrationCheck::Params::validate() const {
   ordered(suspect_outline_deg, failed_outline_deg, "failed_outline_deg");
   positive(suspect_plane_offset, "suspect_plane_offset");
   ordered(suspect_plane_offset, failed_plane_offset, "failed_plane_offset");
+  if (!(min_plane_offset_px >= 0.0)) throw ParamError("min_plane_offset_px", "must be >= 0");
   positive(suspect_plane_tilt_deg, "suspect_plane_tilt_deg");
   ordered(suspect_plane_tilt_deg, failed_plane_tilt_deg, "failed_plane_tilt_deg");
   if (!(suspect_outside_fraction > 0.0 && suspect_outside_fraction < 1.0))

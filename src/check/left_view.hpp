@@ -16,6 +16,7 @@ struct LeftView {
   int width = 0;    ///< [px]
   int height = 0;   ///< [px]
   double fx = 1.0;  ///< [px]
+  double fx_baseline = 0.0;  ///< [px m] of the rectified pair: depth z matches at disparity fx_baseline / z
 
   static LeftView of(const StereoCamera& cameras) {
     LeftView view;
@@ -24,6 +25,7 @@ struct LeftView {
     view.width = cameras.left.width;
     view.height = cameras.left.height;
     view.fx = cameras.left.fx();
+    view.fx_baseline = -cameras.right.projection_matrix(0, 3);
     return view;
   }
 };

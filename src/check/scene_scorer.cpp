@@ -66,13 +66,16 @@ EdgeSums SceneScorer::edges(const Eigen::Isometry3d& T_camera_lidar, int level) 
 }
 
 void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationCheck::Scores& scores) const {
-  std::vector<double> offsets, spreads, outline_px, center_x, center_y;
+  std::vector<double> offsets, offsets_px, spreads, outline_px, center_x, center_y;
   std::array<std::vector<double>, 3> tilts;
   std::size_t outside = 0, returns = 0;
   const auto holes = target_.hole_centers();
   for (const CheckFrame* frame : board_frames_) {
     const PlaneFit fit = plane_fit(*frame, T_camera_lidar);
     offsets.push_back(fit.offset);
+    // The board's depth, which sets the disparity a plane offset amounts to.
+    const double depth = frame->camera.T_camera_board->translation().z();
+    if (view_.fx_baseline > 0.0 && depth > 0.1) offsets_px.push_back(fit.offset * view_.fx_baseline / (depth * depth));
     spreads.push_back(fit.spread);
     for (int k = 0; k < 3; ++k) tilts[k].push_back(fit.tilt[k]);
     const Eigen::Isometry3d T_board_lidar = frame->camera.T_camera_board->inverse() * T_camera_lidar;
@@ -100,6 +103,7 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   }
   if (board_frames_.empty()) return;
   scores.plane_offset = median(offsets);
+  if (!offsets_px.empty()) scores.plane_offset_px = median(offsets_px);
   scores.plane_spread = median(spreads);
   const Eigen::Vector3d tilt(median(tilts[0]), median(tilts[1]), median(tilts[2]));
   scores.plane_tilt = std::asin(std::min(1.0, tilt.norm()));

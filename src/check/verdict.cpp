@@ -33,8 +33,10 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
 
 void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, double fx, Judgement& j) {
   const auto& s = r.scores;
-  j.grade(s.plane_offset, p.suspect_plane_offset, p.failed_plane_offset,
-          format("lidar board returns lie %.1f mm from the camera's board plane", s.plane_offset * 1e3));
+  if (!(std::abs(s.plane_offset_px) < p.min_plane_offset_px))  // NaN: no depth scale, grade as it stands
+    j.grade(s.plane_offset, p.suspect_plane_offset, p.failed_plane_offset,
+            format("lidar board returns lie %.1f mm (%.2f px of disparity) from the camera's board plane",
+                   s.plane_offset * 1e3, s.plane_offset_px));
   j.grade(s.plane_tilt, p.suspect_plane_tilt_deg * kDeg, p.failed_plane_tilt_deg * kDeg,
           format("the lidar board is tilted %.2f deg against the camera's", s.plane_tilt / kDeg));
   j.grade(s.outline_px / fx, p.suspect_outline_deg * kDeg, p.failed_outline_deg * kDeg,
