@@ -43,6 +43,7 @@ const l2s::sim::DatasetSimulator& simulator(int lidar, int frames) {
   return found->second;
 }
 
+// The library's own conversion (detail::gray_mat) is not exported.
 cv::Mat gray(const l2s::Image& image) {
   cv::Mat wrapped(image.height, image.width, image.channels == 3 ? CV_8UC3 : CV_8UC1,
                   const_cast<std::uint8_t*>(image.pixels.data()));

@@ -15,6 +15,7 @@
 
 #include <random>
 #include <unordered_map>
+#include <utility>
 
 namespace l2s::detail {
 namespace {
@@ -88,6 +89,24 @@ std::vector<DepthSample> dominant_plane(const std::vector<DepthSample>& samples)
 /// bias of up to one matching sigma (`depth_noise` = sigma / (f B), 1/m) is
 /// discounted, so a slanted plane shows a rotation only beyond it. NaN with
 /// fewer than 100 samples or too little spread.
+/// The normal equations of value(s) = a + b x + c y over the samples, each
+/// weighted by Tukey's biweight (at 3 %) of its residual from `fit`, a fit of
+/// the relative depth difference.
+template <class Value>
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> biweighted_system(const std::vector<DepthSample>& samples,
+                                                               const Eigen::Vector3d& fit, Value&& value) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (const DepthSample& s : samples) {
+    const Eigen::Vector3d row(1.0, s.x, s.y);
+    const double r = (s.relative - row.dot(fit)) / 0.03;
+    const double w = std::abs(r) < 1.0 ? (1.0 - r * r) * (1.0 - r * r) : 0.0;
+    A += w * row * row.transpose();
+    b += w * row * value(s);
+  }
+  return {A, b};
+}
+
 double depth_tilt(const std::vector<DepthSample>& all, double depth_noise) {
   if (all.size() < 100) return std::numeric_limits<double>::quiet_NaN();
   const std::vector<DepthSample> samples = dominant_plane(all);
@@ -96,29 +115,13 @@ double depth_tilt(const std::vector<DepthSample>& all, double depth_noise) {
   for (const DepthSample& s : samples) relative.push_back(s.relative);
   Eigen::Vector3d x(median(relative), 0.0, 0.0);
   for (int iteration = 0; iteration < 10; ++iteration) {
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d b = Eigen::Vector3d::Zero();
-    for (const DepthSample& s : samples) {
-      const Eigen::Vector3d row(1.0, s.x, s.y);
-      const double r = (s.relative - row.dot(x)) / 0.03;
-      const double w = std::abs(r) < 1.0 ? (1.0 - r * r) * (1.0 - r * r) : 0.0;
-      A += w * row * row.transpose();
-      b += w * row * s.relative;
-    }
+    const auto [A, b] = biweighted_system(samples, x, [](const DepthSample& s) { return s.relative; });
     // Both image directions must be spread (about +-0.1 of the focal length) to give a slope.
     if (A(1, 1) / A(0, 0) < 0.005 || A(2, 2) / A(0, 0) < 0.005) return std::numeric_limits<double>::quiet_NaN();
     x = A.ldlt().solve(b);
   }
   // The depth's gradient across the image on the same samples, same weights.
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (const DepthSample& s : samples) {
-    const Eigen::Vector3d row(1.0, s.x, s.y);
-    const double r = (s.relative - row.dot(x)) / 0.03;
-    const double w = std::abs(r) < 1.0 ? (1.0 - r * r) * (1.0 - r * r) : 0.0;
-    A += w * row * row.transpose();
-    b += w * row * s.p_camera.z();
-  }
+  const auto [A, b] = biweighted_system(samples, x, [](const DepthSample& s) { return s.p_camera.z(); });
   const Eigen::Vector3d z = A.ldlt().solve(b);
   const double bias_tilt = depth_noise * std::hypot(z[1], z[2]);
   return std::atan(std::max(0.0, std::hypot(x[1], x[2]) - bias_tilt));

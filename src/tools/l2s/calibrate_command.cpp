@@ -148,12 +148,8 @@ void print_estimate(const io::Dataset& dataset, const Calibrator::Result& result
 }
 
 int run_calibrate(const CalibrateOptions& options) {
-  const auto dataset = io::Dataset::open(options.dataset);
-  for (const std::string& warning : dataset.warnings())
-    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
-  const Calibrator::Params params = options.params_file.empty()
-                                        ? Calibrator::Params::preset(options.preset)
-                                        : io::read_calibrator_params(options.params_file);
+  const auto dataset = open_dataset_warning(options.dataset);
+  const Calibrator::Params params = params_from(options.preset, options.params_file);
   Calibrator calibrator(dataset.cameras(), dataset.target(), params);
 
   const std::size_t count =

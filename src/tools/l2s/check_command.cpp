@@ -46,9 +46,7 @@ int exit_code(CalibrationCheck::Verdict verdict) {
 int run_check(const CheckOptions& options) {
   const auto dataset = io::Dataset::open(options.dataset);
   const Eigen::Isometry3d T_lidar_camera = io::read_transform(options.result, options.key);
-  const Calibrator::Params params = options.params_file.empty()
-                                        ? Calibrator::Params::preset(options.preset)
-                                        : io::read_calibrator_params(options.params_file);
+  const Calibrator::Params params = params_from(options.preset, options.params_file);
   params.validate();
   const SceneObserver observer(params.observer);
 

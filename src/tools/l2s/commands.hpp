@@ -2,9 +2,13 @@
 // Each sub-command of `l2s` registers its options on the CLI11 app and sets the
 // function that runs it; main() parses, runs and maps errors to exit codes.
 
+#include <l2s/calibrator.hpp>
+#include <l2s/io/dataset.hpp>
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <string>
 
 namespace l2s::cli {
 
@@ -19,5 +23,11 @@ void add_simulate_command(CLI::App& app, Runner& runner);
 void add_suite_command(CLI::App& app, Runner& runner);
 void add_detect_command(CLI::App& app, Runner& runner);
 void add_check_command(CLI::App& app, Runner& runner);
+
+// Inputs several sub-commands share (command_inputs.cpp).
+/// Opens a dataset and prints its warnings to stderr.
+io::Dataset open_dataset_warning(const std::string& folder);
+/// The params of --params FILE when given, else of --preset NAME.
+Calibrator::Params params_from(const std::string& preset, const std::string& params_file);
 
 }  // namespace l2s::cli

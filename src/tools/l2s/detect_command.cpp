@@ -71,12 +71,8 @@ std::string write_image(const fs::path& folder, const std::string& name, const I
 }
 
 int run_detect(const DetectOptions& options) {
-  const auto dataset = io::Dataset::open(options.dataset);
-  for (const std::string& warning : dataset.warnings())
-    std::fprintf(stderr, "l2s: warning: %s\n", warning.c_str());
-  const Calibrator::Params params = options.params_file.empty()
-                                        ? Calibrator::Params::preset(options.preset)
-                                        : io::read_calibrator_params(options.params_file);
+  const auto dataset = open_dataset_warning(options.dataset);
+  const Calibrator::Params params = params_from(options.preset, options.params_file);
   const io::Frame frame = dataset.load(find_frame(dataset, options.frame));
   const fs::path debug_dir =
       options.output.empty() ? fs::path(options.dataset) / "debug" : fs::path(options.output);
