@@ -242,10 +242,11 @@ void describe_refinement(std::string& out, const CameraInspection& in, const Boa
       append(out, "  rim refinement   did not converge (%s): rms %.2f px, %d samples, %d rounds\n",
              r.reason.c_str(), r.rms_px, r.samples, r.iterations);
     append(out,
-           "                   [board_refiner: search_range_px %.1f -> %.1f, min_edge_strength "
-           "%.1f, max_rms_px %.2f, min_samples %d]\n",
-           p.search_range_px, p.final_search_range_px, p.min_edge_strength, p.max_rms_px,
-           p.min_samples);
+           "                   [board_refiner: search_range_px %.1f -> %.1f, edge strength %.1f "
+           "(min_edge_strength %.1f, rim_contrast_fraction %.2f, edge_noise_factor %.1f), max_rms_px %.2f, "
+           "min_samples %d]\n",
+           p.search_range_px, p.final_search_range_px, r.edge_strength, p.min_edge_strength,
+           p.rim_contrast_fraction, p.edge_noise_factor, p.max_rms_px, p.min_samples);
     const Eigen::Isometry3d& T = r.converged ? r.T_camera_board : *in.T_camera_board_initial;
     const Eigen::Vector3d t = T.translation();
     const Eigen::Vector3d z = T.linear().col(2);

@@ -142,6 +142,8 @@ void visit(V& v, BoardPoseRefiner::Params& p) {
   v.field("search_range_px", p.search_range_px);
   v.field("search_step_px", p.search_step_px);
   v.field("min_edge_strength", p.min_edge_strength);
+  v.field("rim_contrast_fraction", p.rim_contrast_fraction);
+  v.field("edge_noise_factor", p.edge_noise_factor);
   v.field("huber_px", p.huber_px);
   v.field("max_iterations", p.max_iterations);
   v.field("gauss_newton_steps", p.gauss_newton_steps);

@@ -20,6 +20,7 @@
 #include <l2s/error.hpp>
 
 #include "camera/cv_image.hpp"
+#include "camera/noise_level.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -517,6 +518,51 @@ class Alignment {
   int searched_at_selection_ = 0;  // samples searched in the round that chose the selection
 };
 
+/// [gray levels / px] Sigma of the Sobel / 8 response to the noise of the
+/// noisier image: white noise of sigma s gives s * sqrt(12) / 8 per axis.
+double gradient_noise(const cv::Mat& gray_left, const cv::Mat& gray_right) {
+  const double noise = std::max(detail::image_noise_sigma(gray_left), detail::image_noise_sigma(gray_right));
+  return noise * std::sqrt(12.0) / 8.0;
+}
+
+/// [gray levels / px] How strong the rims look at pose T: over the front-rim
+/// samples of every view, the median of the strongest gradient along the
+/// rim normal within +-search_range_px. 0 when no sample is inside a view.
+double rim_contrast(const std::vector<View>& views, const Rims& rims, const Eigen::Isometry3d& T,
+                    const Params& params) {
+  std::vector<double> strongest;
+  const double margin = params.image_margin_px + params.search_range_px;
+  for (const View& view : views)
+    for (std::size_t k = 0; k < rims.points.size(); ++k) {
+      if (rims.points[k].z() != 0.0) continue;
+      Eigen::Vector2d u;
+      Eigen::Matrix<double, 2, 3> J;
+      if (!view.project(T * rims.points[k], u, &J)) continue;
+      if (u.x() < margin || u.y() < margin || u.x() > view.width - 1 - margin || u.y() > view.height - 1 - margin)
+        continue;
+      const Eigen::Vector2d tangent = J * (T.linear() * rims.tangents[k]);
+      if (tangent.norm() < 1e-9) continue;
+      const Eigen::Vector2d normal(-tangent.y() / tangent.norm(), tangent.x() / tangent.norm());
+      double best = 0.0;
+      Eigen::Vector2d g;
+      for (double t = -params.search_range_px; t <= params.search_range_px; t += params.search_step_px)
+        if (view.grad.at(u.x() + t * normal.x(), u.y() + t * normal.y(), g)) best = std::max(best, std::abs(g.dot(normal)));
+      strongest.push_back(best);
+    }
+  if (strongest.empty()) return 0.0;
+  std::nth_element(strongest.begin(), strongest.begin() + strongest.size() / 2, strongest.end());
+  return strongest[strongest.size() / 2];
+}
+
+/// [gray levels / px] The weakest rim gradient accepted in this pair:
+/// min_edge_strength, lowered for a board whose rims are weaker than usual
+/// (rim_contrast_fraction of their contrast), never below the noise's
+/// response (edge_noise_factor sigmas, and 0.5 for noiseless images).
+double edge_strength(double rim_contrast, double gradient_noise, const Params& params) {
+  const double noise_floor = std::max(0.5, params.edge_noise_factor * gradient_noise);
+  return std::min(params.min_edge_strength, std::max(noise_floor, params.rim_contrast_fraction * rim_contrast));
+}
+
 }  // namespace
 
 void BoardPoseRefiner::Params::validate() const {
@@ -528,6 +574,9 @@ void BoardPoseRefiner::Params::validate() const {
   if (!(min_rim_separation_px >= 0.0 && min_rim_separation_px <= 10.0))
     throw ParamError("min_rim_separation_px", "must be 0..10");
   if (!(min_edge_strength >= 0.0)) throw ParamError("min_edge_strength", "must be >= 0");
+  if (!(rim_contrast_fraction >= 0.0 && rim_contrast_fraction <= 1.0))
+    throw ParamError("rim_contrast_fraction", "must be 0..1");
+  if (!(edge_noise_factor >= 0.0)) throw ParamError("edge_noise_factor", "must be >= 0");
   if (!(huber_px > 0.0)) throw ParamError("huber_px", "must be > 0");
   if (max_iterations < 1) throw ParamError("max_iterations", "must be >= 1");
   if (gauss_newton_steps < 1) throw ParamError("gauss_newton_steps", "must be >= 1");
@@ -563,7 +612,11 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
     result.reason = "the board is behind a camera";
     return result;
   }
-  Alignment(params_, rims, views).run(T_camera_board, result);
+  Params params = params_;
+  params.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params_),
+                                           gradient_noise(gray_left, gray_right), params_);
+  result.edge_strength = params.min_edge_strength;
+  Alignment(params, rims, views).run(T_camera_board, result);
   result.converged = result.reason.empty();
   return result;
 }
