@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <limits>
+#include <random>
 
 namespace l2s {
 namespace {
@@ -128,6 +129,72 @@ TEST(CircleFinder, GradientVotesStayBoundedOnAWallWideSpreadOfEdges) {
   CircleFinder::Result result;
   EXPECT_NO_THROW(result = CircleFinder().find(edges, scene.visible_plane(), Eigen::Vector3d::UnitZ(),
                                                scene.target, gradients));
+}
+
+/// Camera-like edges (optical frame, board facing the camera 3 m away, x
+/// right, y down) of circles of `radius` around `centres` (board frame, x
+/// right, y up), `per_circle` points each, with their radial gradients.
+struct PlanarEdges {
+  std::vector<Eigen::Vector3d> points, gradients;
+  void add_circles(const std::vector<Eigen::Vector2d>& centres, double radius, int per_circle) {
+    for (const Eigen::Vector2d& c : centres)
+      for (int k = 0; k < per_circle; ++k) {
+        const double a = 2.0 * M_PI * (k + 0.5) / per_circle;
+        const Eigen::Vector2d radial(std::cos(a), std::sin(a));
+        const Eigen::Vector2d q = c + radius * radial;
+        points.emplace_back(q.x(), -q.y(), 3.0);
+        gradients.emplace_back(radial.x(), -radial.y(), 0.0);
+      }
+  }
+};
+
+const Plane kBoardPlane3m(Eigen::Vector3d(0.0, 0.0, -1.0), 3.0);  // z = 3, normal towards the camera
+const Eigen::Vector3d kUpOptical(0.0, -1.0, 0.0);
+
+// Clutter of the holes' own size (bricks seen through and around the holes,
+// a low-resolution rim broken into arcs) can outnumber the true holes among
+// the circle candidates; the pattern's votes still find the four holes, with
+// their labels.
+TEST(CircleFinder, PatternVotesFindTheHolesAmongStrongerClutter) {
+  const Target target;
+  const auto holes = target.hole_centers();
+  PlanarEdges edges;
+  edges.add_circles({holes.begin(), holes.end()}, target.hole_radius, 24);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> where(-1.5, 1.5);
+  std::vector<Eigen::Vector2d> decoys;
+  for (int i = 0; i < 20; ++i) decoys.emplace_back(where(rng), where(rng));
+  edges.add_circles(decoys, target.hole_radius, 40);
+
+  CircleFinder::Params candidates_only;
+  candidates_only.pattern_votes = false;
+  const auto without = CircleFinder(candidates_only).find(edges.points, kBoardPlane3m, kUpOptical, target, edges.gradients);
+  ASSERT_FALSE(without.found) << "the clutter no longer hides the holes from the candidates";
+
+  const auto result = CircleFinder().find(edges.points, kBoardPlane3m, kUpOptical, target, edges.gradients);
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_TRUE(result.by_pattern_votes);
+  for (int h = 0; h < 4; ++h) {
+    const Eigen::Vector3d truth(holes[h].x(), -holes[h].y(), 3.0);
+    EXPECT_LT((result.centers[h] - truth).norm(), 0.003) << hole_name(static_cast<Hole>(h));
+  }
+}
+
+// Two boards' worth of holes (a repetitive texture): the votes cannot tell
+// which is the board, and say so instead of picking one.
+TEST(CircleFinder, PatternVotesRefuseTwoEqualPlacements) {
+  const Target target;
+  const auto holes = target.hole_centers();
+  PlanarEdges edges;
+  std::vector<Eigen::Vector2d> two_boards;
+  for (const Eigen::Vector2d& h : holes) {
+    two_boards.push_back(h + Eigen::Vector2d(-0.9, 0.0));
+    two_boards.push_back(h + Eigen::Vector2d(0.9, 0.0));
+  }
+  edges.add_circles(two_boards, target.hole_radius, 24);
+  const auto result = CircleFinder().find(edges.points, kBoardPlane3m, kUpOptical, target, edges.gradients);
+  EXPECT_FALSE(result.found);
+  EXPECT_NE(result.reason.find("two placements of the pattern"), std::string::npos) << result.reason;
 }
 
 // The contract: bad data is a reason in the result; only bad arguments throw.

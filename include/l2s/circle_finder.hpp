@@ -34,6 +34,11 @@ class L2S_EXPORT CircleFinder {
     bool model_thickness = true;      ///< fit the aperture a ray sees through a thick board (false: thin board, paper)
     bool fit_radius = true;           ///< joint fit: estimate the holes' apparent radius (one for all four; the spacing stays exact), so the centres do not slide when holes look smaller than target.yaml says (lidar beam footprint)
     int max_refine_iterations = 30;   ///< Gauss-Newton iterations of each fit, >= 1
+    /// Joint fit with gradients: when no four candidates form the pattern (or
+    /// two sets do), find the pattern as a whole by votes of every rim for its
+    /// placement; clutter outvotes single holes far more easily than the
+    /// pattern (false: candidates only, paper)
+    bool pattern_votes = true;
     std::uint64_t seed = 7;           ///< random pairs when there are too many to try them all
 
     void validate() const;  ///< throws ParamError naming the field
@@ -51,6 +56,7 @@ class L2S_EXPORT CircleFinder {
     double rms = 0.0;                     ///< [m] rms residual of the final fit
     double radius = 0.0;                  ///< [m] apparent hole radius of the final fit (target's radius unless fit_radius)
     std::size_t fit_points = 0;           ///< points used in the final fit
+    bool by_pattern_votes = false;        ///< found by the pattern's votes, not by four candidates
   };
 
   // Two constructors rather than `Params params = {}`: a nested struct's default

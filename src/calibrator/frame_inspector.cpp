@@ -142,9 +142,11 @@ void describe_circles(std::string& out, const std::optional<CircleFinder::Result
   const auto& r = *result;
   if (r.found)
     append(out,
-           "  circles          %zu candidates, four holes matched; fit rms %.1f %s over %zu "
+           "  circles          %zu candidates, four holes %s; fit rms %.1f %s over %zu "
            "points, pattern roll %.1f deg\n",
-           r.candidates.size(), r.rms * rms_unit, rms_name, r.fit_points, degrees(r.pattern_angle));
+           r.candidates.size(),
+           r.by_pattern_votes ? "found by the pattern's votes (no four candidates formed it)" : "matched",
+           r.rms * rms_unit, rms_name, r.fit_points, degrees(r.pattern_angle));
   else
     append(out, "  circles          %zu candidates; no four holes: %s\n", r.candidates.size(),
            r.reason.c_str());

@@ -72,6 +72,7 @@ void visit(V& v, CircleFinder::Params& p) {
   v.field("model_thickness", p.model_thickness);
   v.field("fit_radius", p.fit_radius);
   v.field("max_refine_iterations", p.max_refine_iterations);
+  v.field("pattern_votes", p.pattern_votes);
   v.field("seed", p.seed);
 }
 

@@ -15,6 +15,7 @@
 #include "circles/circle_fit.hpp"
 #include "circles/circle_votes.hpp"
 #include "circles/hole_pattern.hpp"
+#include "circles/pattern_votes.hpp"
 #include "plane/plane_fit.hpp"
 
 #include <array>
@@ -125,6 +126,35 @@ std::array<Eigen::Vector2d, 4> fit_each_circle(const std::vector<detail::EdgePoi
   return centers;
 }
 
+/// The pattern found by its votes (see circles/pattern_votes.hpp), refit
+/// jointly; false with a reason when the votes are ambiguous or a hole is
+/// left with fewer than min_circle_points on its rim.
+bool fit_voted_pattern(const std::vector<detail::EdgePoint2>& points, const std::array<Eigen::Vector2d, 4>& holes,
+                       double radius, const CircleFinder::Params& params, std::array<Eigen::Vector2d, 4>& centers,
+                       CircleFinder::Result& result) {
+  const detail::PatternVote vote = detail::vote_hole_pattern(points, holes, radius, params.inlier_threshold, 0.8);
+  if (!vote.found) {
+    result.reason = "pattern votes: " + vote.reason;
+    return false;
+  }
+  detail::PatternMatch match;
+  match.found = true;
+  match.offset = vote.offset;
+  match.angle = vote.angle;
+  centers = fit_pattern(points, match, holes, radius, params, result);
+  for (int h = 0; h < 4; ++h) {
+    int on_rim = 0;
+    for (const detail::EdgePoint2& p : points)
+      if (std::abs(detail::aperture_residual(p, centers[h], result.radius)) <= params.inlier_threshold) ++on_rim;
+    if (on_rim < params.min_circle_points) {
+      result.reason = std::string("pattern votes: hole ") + hole_name(static_cast<Hole>(h)) + " has " +
+                      std::to_string(on_rim) + " rim point(s)";
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void CircleFinder::Params::validate() const {
@@ -142,6 +172,7 @@ CircleFinder::Params CircleFinder::Params::paper() {
   params.joint_fit = false;
   params.model_thickness = false;
   params.fit_radius = false;
+  params.pattern_votes = false;
   return params;
 }
 
@@ -185,14 +216,21 @@ CircleFinder::Result CircleFinder::find(const std::vector<Eigen::Vector3d>& edge
   const std::array<Eigen::Vector2d, 4> holes = target.hole_centers();
   const detail::PatternMatch match = detail::match_hole_pattern(candidate_centers, result.candidate_points, holes,
                                                                 params_.spacing_tolerance, radius);
-  if (!match.found) {
-    result.reason = match.reason + " (" + std::to_string(points.size()) + " edge points)";
-    return result;
+  std::array<Eigen::Vector2d, 4> centers2;
+  if (match.found) {
+    result.matched = match.candidate_of_hole;
+    centers2 = params_.joint_fit ? fit_pattern(points, match, holes, radius, params_, result)
+                                 : fit_each_circle(points, candidates, match, radius, params_, result);
+  } else {
+    const bool votes = params_.pattern_votes && params_.joint_fit && !gradients.empty();
+    if (!votes || !fit_voted_pattern(points, holes, radius, params_, centers2, result)) {
+      result.reason = match.reason + (votes ? "; " + result.reason : "") + " (" + std::to_string(points.size()) +
+                      " edge points)";
+      return result;
+    }
+    result.reason.clear();
+    result.by_pattern_votes = true;
   }
-  result.matched = match.candidate_of_hole;
-  const std::array<Eigen::Vector2d, 4> centers2 =
-      params_.joint_fit ? fit_pattern(points, match, holes, radius, params_, result)
-                        : fit_each_circle(points, candidates, match, radius, params_, result);
   for (int h = 0; h < 4; ++h) result.centers[h] = to_sensor(centers2[h]);
   result.found = true;
   return result;

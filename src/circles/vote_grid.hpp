@@ -1,0 +1,40 @@
+#pragma once
+// A 2D vote accumulator in the board plane (private): the circle and the
+// hole-pattern Hough transforms both splat votes on it and read its peaks.
+
+#include <Eigen/Geometry>
+#include <utility>
+#include <vector>
+
+namespace l2s::detail {
+
+class VoteGrid {
+ public:
+  /// Covers `box` widened by `margin` [m] on every side, in cells of `cell`
+  /// [m]. The cell grows when the box is wide (a candidate plane may be a
+  /// whole wall): the grid never holds more than kMaxCells, whatever the input.
+  VoteGrid(const Eigen::AlignedBox2d& box, double margin, double cell);
+
+  double cell() const { return cell_; }
+  void clear();
+  /// Bilinear splat, so a peak's position keeps sub-cell precision.
+  void vote(const Eigen::Vector2d& c, float weight = 1.0f);
+  /// 3x3 box sum: a rim's votes spread over neighbouring cells with noise.
+  void smooth();
+  /// Local maxima (strict over the 8 neighbours), strongest first.
+  std::vector<std::pair<float, Eigen::Vector2d>> peaks() const;
+
+ private:
+  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  float& at(int x, int y) { return votes_[index(x, y)]; }
+  float at(int x, int y) const { return votes_[index(x, y)]; }
+
+  static constexpr double kMaxCells = 4.0e6;
+  double cell_ = 0.0;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  int width_ = 0, height_ = 0;
+  std::vector<float> votes_;
+  std::vector<float> scratch_;
+};
+
+}  // namespace l2s::detail
