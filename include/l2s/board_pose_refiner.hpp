@@ -26,8 +26,9 @@ class L2S_EXPORT BoardPoseRefiner {
     double search_step_px = 0.25;  ///< [px] spacing of the gradient samples on the search line; the 3-point parabolic peak fit is biased by a fraction of the spacing (0.5 px left ~0.5 mm of depth per hole at 3.5 m), 0.1..2
     double min_rim_separation_px = 3.0;  ///< [px] back-rim samples closer than this to the front rim's projection are dropped: the two edges (hole wall between) blend and bias the peak, 0..10
     double min_edge_strength = 6.0;  ///< [gray levels / px] weakest gradient accepted as the rim on a board of ordinary contrast, >= 0
-    /// ... on a low-contrast board (a gray board before a gray wall, slightly
-    /// blurred: rims of 3-5 gray levels / px) the threshold drops to this
+    /// ... and when the refinement fails with it, on a low-contrast board (a
+    /// gray board before a gray wall, slightly blurred: rims of 3-5 gray
+    /// levels / px) it is tried again with the threshold lowered to this
     /// fraction of the rims' own gradient (the median over rim samples of the
     /// strongest gradient within the first search range at the initial
     /// pose), 0..1
@@ -61,7 +62,7 @@ class L2S_EXPORT BoardPoseRefiner {
     int iterations = 0;       ///< search-and-fit rounds run
     double edge_fraction = 0.0;  ///< share of the rim samples searched when the sample set was last chosen that found a strong edge (last round)
     double last_step_px = 0.0;   ///< [px] largest image motion of a used sample in the last round
-    double edge_strength = 0.0;  ///< [gray levels / px] the weakest gradient accepted as a rim in this call
+    double edge_strength = 0.0;  ///< [gray levels / px] the weakest gradient accepted as a rim (min_edge_strength, or the lowered one when the retry converged)
   };
 
   // `Stage(Params = {})` does not compile with GCC while Params has default

@@ -612,13 +612,23 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
     result.reason = "the board is behind a camera";
     return result;
   }
-  Params params = params_;
-  params.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params_),
-                                           gradient_noise(gray_left, gray_right), params_);
-  result.edge_strength = params.min_edge_strength;
-  Alignment(params, rims, views).run(T_camera_board, result);
+  result.edge_strength = params_.min_edge_strength;
+  Alignment(params_, rims, views).run(T_camera_board, result);
   result.converged = result.reason.empty();
-  return result;
+  if (result.converged) return result;
+  // A weaker threshold only when the ordinary one failed: on a textured
+  // board (wood grain) a lower one lets the grain beside the rims win the
+  // search, and a refinement that converged at 6 would end ~7 mm off.
+  Params weaker = params_;
+  weaker.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params_),
+                                           gradient_noise(gray_left, gray_right), params_);
+  if (!(weaker.min_edge_strength < params_.min_edge_strength)) return result;
+  Result retry = result;
+  retry.reason.clear();
+  retry.edge_strength = weaker.min_edge_strength;
+  Alignment(weaker, rims, views).run(T_camera_board, retry);
+  retry.converged = retry.reason.empty();
+  return retry.converged ? retry : result;
 }
 
 }  // namespace l2s
