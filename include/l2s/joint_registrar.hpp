@@ -28,7 +28,6 @@ struct PosePair {
 class L2S_EXPORT JointRegistrar {
  public:
   struct Params {
-    Registrar::Params registrar;  ///< degeneracy limits (one pose: the whole fit)
     /// A pose is an outlier when its residual under the fit of the other
     /// poses exceeds this many times what that fit predicts there (its
     /// residual noise and its spread at the pose), > 1
@@ -69,7 +68,9 @@ class L2S_EXPORT JointRegistrar {
 
   JointRegistrar() : JointRegistrar(Params{}) {}
   /// Throws ParamError naming the field when `params` is invalid.
-  explicit JointRegistrar(Params params);
+  explicit JointRegistrar(Params params) : JointRegistrar(params, Registrar::Params{}) {}
+  /// `registrar`: degeneracy limits for each pose (one pose: the whole fit).
+  JointRegistrar(Params params, Registrar::Params registrar);
   const Params& params() const { return params_; }
 
   /// Fits T_target_source to all poses. Never throws on bad data.
@@ -77,6 +78,7 @@ class L2S_EXPORT JointRegistrar {
 
  private:
   Params params_;
+  Registrar::Params registrar_;
 };
 
 }  // namespace l2s

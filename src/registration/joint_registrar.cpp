@@ -100,14 +100,16 @@ std::vector<int> without(const std::vector<int>& use, int p) {
 }  // namespace
 
 void JointRegistrar::Params::validate() const {
-  registrar.validate();
   if (!(outlier_ratio > 1.0)) throw ParamError("outlier_ratio", "must be > 1");
   if (!(outlier_floor >= 0.0)) throw ParamError("outlier_floor", "must be >= 0");
   if (min_poses_to_reject < 3) throw ParamError("min_poses_to_reject", "must be >= 3");
   if (!(max_condition > 1.0)) throw ParamError("max_condition", "must be > 1");
 }
 
-JointRegistrar::JointRegistrar(Params params) : params_(params) { params_.validate(); }
+JointRegistrar::JointRegistrar(Params params, Registrar::Params registrar) : params_(params), registrar_(registrar) {
+  params_.validate();
+  registrar_.validate();
+}
 
 int JointRegistrar::Result::used_count() const { return static_cast<int>(std::count(used.begin(), used.end(), true)); }
 
@@ -117,7 +119,7 @@ JointRegistrar::Result JointRegistrar::estimate(const std::vector<PosePair>& pos
     result.reason = "no board poses";
     return result;
   }
-  const Registrar registrar(params_.registrar);
+  const Registrar registrar(registrar_);
   std::vector<int> use(poses.size());
   for (std::size_t p = 0; p < poses.size(); ++p) use[p] = static_cast<int>(p);
   Fit current = fit(poses, use, registrar);
