@@ -133,20 +133,27 @@ PoseGrouper::Result PoseGrouper::group(const std::vector<FrameCenters>& frames) 
   const bool any_full = std::any_of(all.begin(), all.end(), [&](const Stretch& s) {
     return static_cast<int>(s.frames.size()) >= params_.min_frames;
   });
+  // Consecutive short stretches are one move of the board: one note for them.
+  std::vector<int> moving_run;
+  const auto flush_moving = [&] {
+    if (moving_run.empty()) return;
+    std::sort(moving_run.begin(), moving_run.end());
+    result.moving.insert(result.moving.end(), moving_run.begin(), moving_run.end());
+    std::ostringstream note;
+    note << frame_range(moving_run) << ": the board moved (no " << params_.min_frames
+         << " frames in a row agree; not used)";
+    result.notes.push_back(note.str());
+    moving_run.clear();
+  };
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Stretch& s = all[i];
     const bool pose = static_cast<int>(s.frames.size()) >= params_.min_frames || (!any_full && i == fallback);
     if (!pose) {
-      std::vector<int> skipped = s.frames;
-      skipped.insert(skipped.end(), s.outliers.begin(), s.outliers.end());
-      std::sort(skipped.begin(), skipped.end());
-      result.moving.insert(result.moving.end(), skipped.begin(), skipped.end());
-      std::ostringstream note;
-      note << frame_range(skipped) << ": the board moved (" << s.frames.size() << " static frames, a pose needs "
-           << params_.min_frames << ")";
-      result.notes.push_back(note.str());
+      moving_run.insert(moving_run.end(), s.frames.begin(), s.frames.end());
+      moving_run.insert(moving_run.end(), s.outliers.begin(), s.outliers.end());
       continue;
     }
+    flush_moving();
     Pose p;
     p.frames = s.frames;
     p.outliers = s.outliers;
@@ -161,6 +168,7 @@ PoseGrouper::Result PoseGrouper::group(const std::vector<FrameCenters>& frames) 
     }
     result.poses.push_back(std::move(p));
   }
+  flush_moving();
   std::sort(result.moving.begin(), result.moving.end());
   return result;
 }
