@@ -120,6 +120,39 @@ TEST(JointRegistrar, UncertaintyCoversTheTrueError) {
   }
 }
 
+TEST(JointRegistrar, JackknifeOverPosesCoversErrorsAPoseShares) {
+  // Each pose's camera centres share an offset (a depth bias of that pose's
+  // detection): no residual shows it, the spread over poses does.
+  std::mt19937 rng(8);
+  std::normal_distribution<double> bias(0.0, 0.003);
+  const Eigen::Vector3d rpy_true = roll_pitch_yaw(truth().rotation());
+  const int runs = 200;
+  int covered = 0, covered_by_residuals = 0;
+  for (int run = 0; run < runs; ++run) {
+    std::vector<PosePair> poses = three_poses(rng, 0.0005);
+    poses.push_back(board({3.5, 0.5, 0.3}, -0.1, rng, 0.0005));
+    poses.push_back(board({4.0, -0.4, -0.2}, 0.25, rng, 0.0005));
+    for (auto& pose : poses) {
+      const Eigen::Vector3d offset(bias(rng), bias(rng), bias(rng));
+      for (auto& p : pose.source) p += offset;
+    }
+    JointRegistrar::Params keep_all;  // offsets this large relative to the noise may look like an outlier
+    keep_all.outlier_ratio = 1e9;
+    const JointRegistrar::Result result = JointRegistrar(keep_all).estimate(poses);
+    ASSERT_EQ(result.used_count(), 5);
+    const FitUncertainty& u = result.uncertainty;
+    const Eigen::Vector3d dt = result.T_target_source.translation() - truth().translation();
+    const Eigen::Vector3d dr = roll_pitch_yaw(result.T_target_source.rotation()) - rpy_true;
+    for (int k = 0; k < 6; ++k) {
+      const double error = std::abs(k < 3 ? dt[k] : dr[k - 3]);
+      covered += error <= u.bound_95[k];
+      covered_by_residuals += error <= student_t_95(u.dof) * std::sqrt(u.covariance(k, k));
+    }
+  }
+  EXPECT_GE(covered, 0.9 * 6 * runs);
+  EXPECT_LT(covered_by_residuals, 0.8 * 6 * runs);  // the residuals alone would not
+}
+
 TEST(JointRegistrar, SuggestsAPoseOnlyWhenPoorlyConditioned) {
   std::mt19937 rng(6);
   const JointRegistrar::Result one = JointRegistrar().estimate({board({4.0, 0.0, 0.0}, 0.0, rng, 0.002)});

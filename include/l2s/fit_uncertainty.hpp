@@ -26,6 +26,13 @@ struct FitUncertainty {
   double sigma_residual = 0.0; ///< [m] s, the residual standard error per coordinate
   std::array<double, 6> sigma{};     ///< [m m m rad rad rad] 1-sigma per DoF (tx ty tz roll pitch yaw)
   std::array<double, 6> bound_95{};  ///< [m m m rad rad rad] half width of the 95 % interval (Student t with dof)
+  /// [m m m rad rad rad] Jackknife over board poses (JointRegistrar, three
+  /// or more poses; else 0): errors a pose shares across its four centres
+  /// (a depth or tilt bias of its detection) leave no residual, but move the
+  /// estimate when that pose is left out. When set, sigma and bound_95 are
+  /// the larger of the residual-based value and this one (its bound with
+  /// Student t of poses - 1 dof).
+  std::array<double, 6> sigma_between_poses{};
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();  ///< [SI] of (tx ty tz roll pitch yaw)
   /// sqrt(lambda_max / lambda_min) of J^T J with rotations scaled by the
   /// points' mean range (so a radian and a metre at the board weigh alike).

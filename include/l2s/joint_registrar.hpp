@@ -61,7 +61,7 @@ class L2S_EXPORT JointRegistrar {
     double rms = 0.0;            ///< [m] over the used poses
     std::vector<std::string> notes;  ///< rejected poses and why
     Registrar::Result single;    ///< one used pose: Registrar's result (its translation-only step too)
-    FitUncertainty uncertainty;  ///< of the final fit
+    FitUncertainty uncertainty;  ///< of the final fit; three or more poses: widened by the jackknife over poses
     std::vector<LeaveOneOut> leave_one_out;  ///< one per used pose, when two or more are used
     int used_count() const;
   };

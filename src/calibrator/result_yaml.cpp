@@ -182,6 +182,7 @@ void emit_poses(YAML::Emitter& out, const Calibrator::Result& result) {
     out << YAML::Key << "uncertainty" << YAML::Value << YAML::BeginMap;
     emit_dofs(out, "sigma", u.sigma);
     emit_dofs(out, "bound_95", u.bound_95);
+    if (result.poses_used() >= 3) emit_dofs(out, "sigma_between_poses", u.sigma_between_poses);
     out << YAML::Key << "residual_sigma_m" << YAML::Value << format_number(u.sigma_residual);
     out << YAML::Key << "dof" << YAML::Value << u.dof;
     out << YAML::Key << "condition" << YAML::Value << format_number(u.condition);

@@ -97,6 +97,25 @@ std::vector<int> without(const std::vector<int>& use, int p) {
   return out;
 }
 
+/// The jackknife over poses (Quenouille-Tukey): var = (P-1)/P sum (theta_-p
+/// - mean)^2 per DoF, from the leave-one-pose-out shifts; needs P >= 3 (with
+/// two, each half is one pose and the spread says little). Widens `u`.
+void widen_by_jackknife(const std::vector<JointRegistrar::LeaveOneOut>& loo, int poses, FitUncertainty& u) {
+  if (poses < 3 || !u.valid || static_cast<int>(loo.size()) != poses) return;
+  for (const auto& l : loo)
+    if (!l.found) return;
+  const double t95 = student_t_95(poses - 1);
+  for (int k = 0; k < 6; ++k) {
+    double mean = 0.0, sum_sq = 0.0;
+    for (const auto& l : loo) mean += l.shift[k] / poses;
+    for (const auto& l : loo) sum_sq += (l.shift[k] - mean) * (l.shift[k] - mean);
+    const double sigma = std::sqrt((poses - 1.0) / poses * sum_sq);
+    u.sigma_between_poses[k] = sigma;
+    u.bound_95[k] = std::max(u.bound_95[k], t95 * sigma);
+    u.sigma[k] = std::max(u.sigma[k], sigma);
+  }
+}
+
 }  // namespace
 
 void JointRegistrar::Params::validate() const {
@@ -188,6 +207,7 @@ JointRegistrar::Result JointRegistrar::estimate(const std::vector<PosePair>& pos
       }
       result.leave_one_out.push_back(loo);
     }
+    widen_by_jackknife(result.leave_one_out, static_cast<int>(use.size()), result.uncertainty);
   }
   return result;
 }
