@@ -339,3 +339,53 @@ TEST(SuiteRunner, StreamingCellGivesOneRowPerFrameAndSharesTheFrames) {
 
 }  // namespace
 }  // namespace l2s::sim
+
+namespace l2s::sim {
+namespace {
+
+TEST(SuitePlan, PosesExperimentIsOneRecordingPerSettingWithFourEvaluations) {
+  SuiteOptions options;
+  options.experiments = {"poses"};
+  options.presets = {"default"};
+  options.repeats = 2;
+  const std::vector<SuiteGroup> plan = make_suite_plan(options);
+  ASSERT_EQ(plan.size(), 18u);
+  for (const SuiteGroup& group : plan) {
+    EXPECT_EQ(group.frames, 5 * 10 + 4 * 2);  // five poses of 10 frames, 2 moving frames between
+    ASSERT_EQ(group.cells.size(), 1u);
+    EXPECT_EQ(group.cells[0].lidar, "vlp16");
+    EXPECT_EQ(group.cells[0].rows(), 4);
+  }
+}
+
+TEST(SuiteStats, PosesSummaryCountsCoverageAndMovingFramesPerP) {
+  std::vector<SuiteRow> rows;
+  for (int setting = 1; setting <= 2; ++setting)
+    for (int p : {1, 3}) {
+      SuiteRow row;
+      row.experiment = "poses";
+      row.setting = setting;
+      row.lidar = "vlp16";
+      row.preset = "default";
+      row.frames = p == 1 ? 10 : 34;
+      row.success = true;
+      row.e_t = p == 1 ? 0.004 : 0.001;
+      row.e_r = (p == 1 ? 0.1 : 0.02) * M_PI / 180.0;
+      // Setting 2's P = 3 run: a moving frame entered a pose, two DoF not covered.
+      const bool bad = setting == 2 && p == 3;
+      row.scene = "poses=" + std::to_string(p) + " drawn=" + std::to_string(p) + " found=" + std::to_string(p) +
+                  " used=" + std::to_string(p) + " moving_in_poses=" + (bad ? "1" : "0") +
+                  " covered=" + (bad ? "4" : "6") + " valid=1";
+      rows.push_back(row);
+    }
+  const std::string summary = suite_summary_markdown(rows);
+  EXPECT_NE(summary.find("## poses"), std::string::npos) << summary;
+  // P = 3: 10 of 12 DoF covered (83 %), one of two runs wholly, one moving frame in a pose.
+  EXPECT_NE(summary.find("| default | 3 | 2 | 100 % | 3.00 | 1.00 | 1.00 | 0.020 | 0.020 | 83 % | 50 % | 1 |"),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("P = 3 has a smaller e_r than P = 1 in 2 of 2 recordings"), std::string::npos) << summary;
+}
+
+}  // namespace
+}  // namespace l2s::sim

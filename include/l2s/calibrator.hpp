@@ -21,8 +21,10 @@
 #include <l2s/edge_filter.hpp>
 #include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
+#include <l2s/joint_registrar.hpp>
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
+#include <l2s/pose_grouper.hpp>
 #include <l2s/registrar.hpp>
 #include <l2s/scene_observer.hpp>
 #include <l2s/stereo_board_locator.hpp>
@@ -67,6 +69,19 @@ struct FrameReport {
   bool used() const { return lidar.found && camera.found; }
 };
 
+/// One board pose of a calibration: a static stretch of frames (PoseGrouper),
+/// its centres clustered per sensor, and its part in the joint fit.
+struct PoseReport {
+  int first_frame = 0;   ///< index of its first frame among those added
+  int last_frame = 0;    ///< index of its last frame (inclusive)
+  std::vector<int> frames;  ///< frames whose centres it accumulated (outliers within first..last left out)
+  CenterAccumulator::Result lidar_centroids;   ///< clustered lidar centres of the pose
+  CenterAccumulator::Result camera_centroids;  ///< clustered camera centres of the pose
+  bool used = false;     ///< in the joint fit
+  std::string reason;    ///< why not, when !used (centres do not cluster, rejected as an outlier)
+  double rms = 0.0;      ///< [m] residual rms of its centres under the result (NaN when they did not cluster)
+};
+
 /// The facade: one per rig and calibration run (see thread safety above).
 class L2S_EXPORT Calibrator {
  public:
@@ -98,6 +113,8 @@ class L2S_EXPORT Calibrator {
     // Accumulation and registration.
     CenterAccumulator::Params accumulator;  ///< its min_frames: fewest frames with centres on each side for a result
     Registrar::Params registrar;
+    PoseGrouper::Params poses;  ///< how frames are grouped into board poses (the board static within each)
+    JointRegistrar::Params joint;  ///< the fit over all poses: outlying poses, when to suggest another
     bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
     // The scene-level check of the result (calibration_check.hpp).
     bool check_result = true;  ///< result() checks the transform against the scene and fills Result::quality
@@ -134,6 +151,17 @@ class L2S_EXPORT Calibrator {
     /// the sensors gave them (a rig rolled against the lidar); 0: as given.
     int labels_turned = 0;
     std::vector<std::string> notes;  ///< what the calibrator decided on its own (e.g. turned labels), in words
+    /// Board poses found in the frames (one for a static board). With
+    /// several, lidar_centroids and camera_centroids are those of the first
+    /// used pose, and `registration` holds the joint fit (its residuals: rms
+    /// per hole over the used poses).
+    std::vector<PoseReport> poses;
+    std::vector<int> moving_frames;  ///< frames with centres taken while the board moved (in no pose)
+    /// The joint fit over the used poses: per-DoF uncertainty, the
+    /// leave-one-pose-out shifts (two or more poses) and, when poorly
+    /// conditioned, the kind of pose that would help most.
+    JointRegistrar::Result joint;
+    int poses_used() const;  ///< poses in the joint fit
   };
 
   /// Throws ParamError naming the field for invalid params, target or

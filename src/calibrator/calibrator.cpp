@@ -2,6 +2,7 @@
 
 #include "calibrator/branches.hpp"
 #include "calibrator/check_keeper.hpp"
+#include "calibrator/pose_registration.hpp"
 #include "calibrator/result_check.hpp"
 #include "detail/board_frame.hpp"
 #include "detail/input_checks.hpp"
@@ -47,8 +48,6 @@ struct Calibrator::Impl {
   detail::CameraSetup camera_setup;  // rectified cameras (and the rectifier for raw images)
   Target target;
   Params params;
-  CenterAccumulator lidar_centers;
-  CenterAccumulator camera_centers;
   std::vector<FrameReport> frames;
   SceneObserver observer;
   detail::CheckFrameKeeper check_frames;
@@ -101,8 +100,6 @@ struct Calibrator::Impl {
   FrameReport record(FrameReport report, const std::string& id, bool ring_free, ObserveLidar&& observe_lidar,
                      ObserveCamera&& observe_camera) {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
-    if (report.lidar.found) lidar_centers.add(report.lidar.centers);
-    if (report.camera.found) camera_centers.add(report.camera.centers);
     std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
     if (params.check_result && ring_free) {
       if (report.camera.found && !window_camera) window_camera = observe_camera();
@@ -135,9 +132,9 @@ struct Calibrator::Impl {
       result.reason = "no frames added";
       return result;
     }
-    CenterAccumulator lidar_accumulated = lidar_centers;
+    std::optional<HoleCenters> late_lidar;
     if (const auto partial = partial_ring_free_window(); partial && partial->found) {
-      lidar_accumulated.add(partial->centers);
+      late_lidar = partial->centers;
       ++result.lidar_frames;
     }
     const int needed = params.accumulator.min_frames;
@@ -152,23 +149,7 @@ struct Calibrator::Impl {
       return result;
     }
 
-    result.lidar_centroids = lidar_accumulated.estimate();
-    result.camera_centroids = camera_centers.estimate();
-    if (!result.lidar_centroids.found) {
-      result.reason = "lidar centres do not cluster: " + result.lidar_centroids.reason;
-      return result;
-    }
-    if (!result.camera_centroids.found) {
-      result.reason = "camera centres do not cluster: " + result.camera_centroids.reason;
-      return result;
-    }
-    result.registration =
-        Registrar(params.registrar).estimate(result.lidar_centroids.centers, result.camera_centroids.centers);
-    if (!result.registration.found) {
-      result.reason = "registration failed: " + result.registration.reason;
-      return result;
-    }
-    result.T_lidar_camera = result.registration.T_lidar_camera;
+    if (!detail::register_poses(frames, late_lidar, params, result)) return result;
     result.found = true;
     return result;
   }
@@ -178,8 +159,6 @@ struct Calibrator::Impl {
         camera_setup(cameras),
         target(t),
         params(std::move(p)),
-        lidar_centers(params.accumulator),
-        camera_centers(params.accumulator),
         observer(params.observer),
         check_frames(params.check_frames) {}
 };
@@ -278,8 +257,6 @@ Calibrator::Result Calibrator::result() const {
 }
 
 void Calibrator::reset() {
-  impl_->lidar_centers.reset();
-  impl_->camera_centers.reset();
   impl_->frames.clear();
   impl_->check_frames.reset();
   impl_->ring_free_window.clear();
@@ -287,6 +264,12 @@ void Calibrator::reset() {
 }
 
 const std::vector<CheckFrame>& Calibrator::check_frames() const { return impl_->check_frames.frames(); }
+
+int Calibrator::Result::poses_used() const {
+  int used = 0;
+  for (const PoseReport& pose : poses) used += pose.used;
+  return used;
+}
 
 const Calibrator::Params& Calibrator::params() const { return impl_->params; }
 const StereoCamera& Calibrator::cameras() const { return impl_->cameras; }

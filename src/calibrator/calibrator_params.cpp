@@ -84,6 +84,8 @@ void Calibrator::Params::validate() const {
   validate_field("board_refiner", [&] { board_refiner.validate(); });
   validate_field("accumulator", [&] { accumulator.validate(); });
   validate_field("registrar", [&] { registrar.validate(); });
+  validate_field("poses", [&] { poses.validate(); });
+  validate_field("joint", [&] { joint.validate(); });
   if (ring_free_frames < 1) throw ParamError("ring_free_frames", "must be >= 1");
   if (check_frames < 1) throw ParamError("check_frames", "must be >= 1");
   validate_field("observer", [&] { observer.validate(); });

@@ -176,6 +176,20 @@ void visit(V& v, Registrar::Params& p) {
 }
 
 template <class V>
+void visit(V& v, PoseGrouper::Params& p) {
+  v.field("tolerance", p.tolerance);
+  v.field("min_frames", p.min_frames);
+}
+
+template <class V>
+void visit(V& v, JointRegistrar::Params& p) {
+  v.field("outlier_ratio", p.outlier_ratio);
+  v.field("outlier_floor", p.outlier_floor);
+  v.field("min_poses_to_reject", p.min_poses_to_reject);
+  v.field("max_condition", p.max_condition);
+}
+
+template <class V>
 void visit(V& v, SceneObserver::Params& p) {
   v.field("min_jump", p.min_jump);
   v.field("relative_jump", p.relative_jump);
@@ -247,6 +261,8 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("board_refiner", [&](V& s) { visit(s, p.board_refiner); });
   v.section("accumulator", [&](V& s) { visit(s, p.accumulator); });
   v.section("registrar", [&](V& s) { visit(s, p.registrar); });
+  v.section("poses", [&](V& s) { visit(s, p.poses); });
+  v.section("joint", [&](V& s) { visit(s, p.joint); });
   v.field("parallel_branches", p.parallel_branches);
   v.field("check_result", p.check_result);
   v.field("check_frames", p.check_frames);

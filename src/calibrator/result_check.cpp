@@ -3,30 +3,17 @@
 
 #include "calibrator/result_check.hpp"
 
+#include "calibrator/pose_registration.hpp"
+
 #include <cstdio>
 
 namespace l2s::detail {
 namespace {
 
-template <class T>
-std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation& permutation) {
-  std::array<T, 4> out;
-  for (int h = 0; h < 4; ++h) out[h] = values[permutation[h]];
-  return out;
-}
-
-/// Makes the fit with the camera centroids relabelled by `turn` the result.
+/// Makes the fit with the camera centroids (of every pose) relabelled by `turn` the result.
 bool adopt(Calibrator::Result& result, const CalibrationCheck::Alternative& turn, double support_before,
-           const Registrar& registrar) {
-  CenterAccumulator::Result camera = result.camera_centroids;
-  camera.centers = relabel(camera.centers, turn.relabel);
-  camera.counts = permuted(camera.counts, turn.relabel);
-  camera.spread = permuted(camera.spread, turn.relabel);
-  const Registrar::Result fit = registrar.estimate(result.lidar_centroids.centers, camera.centers);
-  if (!fit.found) return false;
-  result.camera_centroids = camera;
-  result.registration = fit;
-  result.T_lidar_camera = fit.T_lidar_camera;
+           const Calibrator::Params& params) {
+  if (!refit_relabelled(result, turn.relabel, params)) return false;
   result.labels_turned = turn.degrees;
   char note[320];
   std::snprintf(note, sizeof note,
@@ -50,7 +37,7 @@ void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& fra
   };
   CalibrationCheck::Report report = check.check(frames, result.T_lidar_camera, alternatives());
   if (report.preferred >= 0 &&
-      adopt(result, report.alternatives[report.preferred], report.scores.support, registrar)) {
+      adopt(result, report.alternatives[report.preferred], report.scores.support, params)) {
     const double milliseconds = report.milliseconds;
     report = check.check(frames, result.T_lidar_camera, alternatives());
     report.milliseconds += milliseconds;

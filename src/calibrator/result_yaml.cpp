@@ -8,6 +8,7 @@
 #include "io/yaml_helpers.hpp"
 
 #include <l2s/center_accumulator.hpp>
+#include <l2s/fit_uncertainty.hpp>
 #include <l2s/error.hpp>
 #include <l2s/pose.hpp>
 
@@ -145,6 +146,65 @@ void emit_quality(YAML::Emitter& out, const Calibrator::Result& result) {
   out << YAML::EndMap;
 }
 
+/// Per DoF, translations in metres and rotations in degrees: {tx_m: .., roll_deg: ..}.
+void emit_dofs(YAML::Emitter& out, const std::string& key, const std::array<double, 6>& values) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap;
+  for (int k = 0; k < 6; ++k)
+    out << YAML::Key << std::string(dof_names()[k]) + (k < 3 ? "_m" : "_deg") << YAML::Value
+        << format_number(k < 3 ? values[k] : values[k] * 180.0 / M_PI);
+  out << YAML::EndMap;
+}
+
+// Several poses (issue 9): the poses found, the fit's uncertainty and how far
+// leaving each pose out moves it.
+void emit_poses(YAML::Emitter& out, const Calibrator::Result& result) {
+  out << YAML::Key << "poses" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "found" << YAML::Value << result.poses.size();
+  out << YAML::Key << "used" << YAML::Value << result.poses_used();
+  out << YAML::Key << "moving_frames" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const int f : result.moving_frames) out << f;
+  out << YAML::EndSeq;
+  out << YAML::Key << "list" << YAML::Value << YAML::BeginSeq;
+  for (const PoseReport& pose : result.poses) {
+    out << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "first_frame" << YAML::Value << pose.first_frame;
+    out << YAML::Key << "last_frame" << YAML::Value << pose.last_frame;
+    out << YAML::Key << "frames" << YAML::Value << pose.frames.size();
+    out << YAML::Key << "used" << YAML::Value << pose.used;
+    if (std::isfinite(pose.rms)) out << YAML::Key << "rms_m" << YAML::Value << format_number(pose.rms);
+    if (!pose.reason.empty()) out << YAML::Key << "reason" << YAML::Value << pose.reason;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+
+  const FitUncertainty& u = result.joint.uncertainty;
+  if (u.valid) {
+    out << YAML::Key << "uncertainty" << YAML::Value << YAML::BeginMap;
+    emit_dofs(out, "sigma", u.sigma);
+    emit_dofs(out, "bound_95", u.bound_95);
+    if (result.poses_used() >= 3) emit_dofs(out, "sigma_between_poses", u.sigma_between_poses);
+    out << YAML::Key << "residual_sigma_m" << YAML::Value << format_number(u.sigma_residual);
+    out << YAML::Key << "dof" << YAML::Value << u.dof;
+    out << YAML::Key << "condition" << YAML::Value << format_number(u.condition);
+    out << YAML::Key << "weakest" << YAML::Value << u.weakest_summary;
+    if (!u.suggestion.empty()) out << YAML::Key << "suggestion" << YAML::Value << "add a pose " + u.suggestion;
+    out << YAML::EndMap;
+  }
+  if (!result.joint.leave_one_out.empty()) {
+    out << YAML::Key << "leave_one_pose_out" << YAML::Value << YAML::BeginSeq;
+    for (std::size_t k = 0, used = 0; k < result.poses.size(); ++k) {
+      if (!result.poses[k].used || used >= result.joint.leave_one_out.size()) continue;
+      const JointRegistrar::LeaveOneOut& loo = result.joint.leave_one_out[used++];
+      out << YAML::BeginMap << YAML::Key << "pose" << YAML::Value << k;
+      out << YAML::Key << "translation_m" << YAML::Value << format_number(loo.translation);
+      out << YAML::Key << "rotation_deg" << YAML::Value << format_number(loo.rotation * 180.0 / M_PI);
+      emit_dofs(out, "shift", loo.shift);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+}
+
 }  // namespace
 
 void write_calibration_result(const std::string& path, const Calibrator::Result& result,
@@ -187,6 +247,7 @@ void write_calibration_result(const std::string& path, const Calibrator::Result&
   emit_centers(out, "lidar_centroids", result.lidar_centroids.centers);
   emit_centers(out, "camera_centroids", result.camera_centroids.centers);
   out << YAML::EndMap;
+  emit_poses(out, result);
   if (result.checked) emit_quality(out, result);
 
   out << YAML::Key << "frames" << YAML::Value << YAML::BeginSeq;

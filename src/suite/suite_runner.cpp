@@ -10,6 +10,8 @@
 #include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/simulation.hpp>
 
+#include "suite/suite_poses.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -164,6 +166,7 @@ std::vector<SuiteRow> rows_of(const std::vector<SuiteCell>& cells, const GroupDa
 
 std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
                                       int threads, const std::function<void()>& on_frame) {
+  if (group.experiment == "poses") return detail::run_poses_group(group, cells, threads, on_frame);
   const GroupData data = simulate_group(group, cells, threads);
   std::vector<Run> runs = start_runs(cells, data);
   Evaluations evaluations;

@@ -4,6 +4,7 @@
 #include <l2s/sim/suite_results.hpp>
 
 #include "suite/suite_check_summary.hpp"
+#include "suite/suite_poses.hpp"
 #include "suite/suite_scenes_summary.hpp"
 
 #include <algorithm>
@@ -25,6 +26,7 @@ const char* title_of(const std::string& experiment) {
   if (experiment == "lidars") return "lidars: error per lidar model (Fig. 7; K = 1, 30 frames)";
   if (experiment == "quick") return "quick: CI smoke test (VLP-16, K = 1, 10 frames)";
   if (experiment == "scenes") return "scenes: randomised rigs, scenes and lidars (K = 1)";
+  if (experiment == "poses") return "poses: error against the number of board poses (VLP-16, K = 1, 10 frames per pose)";
   return "";
 }
 
@@ -101,12 +103,15 @@ std::string suite_summary_markdown(const std::vector<SuiteRow>& all_rows) {
          "interquartile range (IQR) of e_t and e_r over the successful ones (failures are counted, "
          "never dropped).\n";
   for (const auto& experiment : experiments) {
-    if (experiment == "scenes") {
+    if (experiment == "scenes" || experiment == "poses") {
       std::vector<const SuiteRow*> scene_rows;
       for (const auto& row : rows)
         if (row.experiment == experiment) scene_rows.push_back(&row);
       out << "\n## " << title_of(experiment) << "\n\n";
-      detail::write_scenes_summary(out, scene_rows);
+      if (experiment == "scenes")
+        detail::write_scenes_summary(out, scene_rows);
+      else
+        detail::write_poses_summary(out, scene_rows);
       continue;
     }
     int last = 0;

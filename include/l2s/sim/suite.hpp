@@ -15,9 +15,11 @@ namespace l2s::sim {
 
 /// What to run. Experiments: "frames" (Fig. 5), "noise" (Fig. 6), "lidars"
 /// (Fig. 7), "quick" (a CI smoke test: 3 settings, VLP-16, K = 1, 10 frames),
-/// or "scenes" (`scene_count` randomised scenes, sim::make_random_scene: other
+/// "scenes" (`scene_count` randomised scenes, sim::make_random_scene: other
 /// rigs, lenses, raw images, boards, backgrounds, light, lidars and their
-/// quirks; one run per scene, `setting` numbers the scene).
+/// quirks; one run per scene, `setting` numbers the scene), or "poses" (issue
+/// 9: one recording of five board poses per setting, VLP-16, evaluated after
+/// 1, 2, 3 and 5 poses; `scene` holds the poses and uncertainty coverage).
 struct L2S_SUITE_EXPORT SuiteOptions {
   std::vector<std::string> experiments = {"frames", "noise", "lidars"};
   std::vector<std::string> presets = {"default", "paper"};  ///< Calibrator presets
@@ -42,8 +44,8 @@ struct L2S_SUITE_EXPORT SuiteCell {
   std::uint64_t seed = 0;   ///< simulation seed (SimulationConfig::seed)
   bool every_frame = false; ///< evaluated after each added frame (Fig. 5), else once at the end
 
-  /// Rows the cell writes: one per evaluation.
-  int rows() const { return every_frame ? frames : 1; }
+  /// Rows the cell writes: one per evaluation (poses: after 1, 2, 3 and 5 poses).
+  int rows() const { return experiment == "poses" ? 4 : every_frame ? frames : 1; }
   /// Identity of the cell within results (seed and frames excluded).
   std::string key() const;
 };

@@ -6,6 +6,7 @@
 
 #include <l2s/error.hpp>
 #include <l2s/io/target_yaml.hpp>
+#include <l2s/sim/multi_pose.hpp>
 #include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/scene_yaml.hpp>
 #include <l2s/sim/simulation.hpp>
@@ -49,6 +50,10 @@ struct SimulateOptions {
 
   // --- Lidar side ---
   bool lidar_quirks = false;
+
+  // --- Several board poses (issue 9) ---
+  std::optional<int> poses;  // absent: one pose, the single-pose dataset as always
+  int moving_frames = 2;
 };
 
 /// Applies the rig and look options that were given on the command line.
@@ -94,7 +99,7 @@ void prepare_output(const std::string& folder, bool overwrite) {
   if (!overwrite) throw FileError(folder, "folder is not empty (use --overwrite to replace the dataset)");
   for (const char* sub : {"lidar", "left", "right"}) fs::remove_all(fs::path(folder) / sub);
   for (const char* file :
-       {"dataset.yaml", "left.yaml", "right.yaml", "target.yaml", "ground_truth.yaml", "scene.yaml"})
+       {"dataset.yaml", "left.yaml", "right.yaml", "target.yaml", "ground_truth.yaml", "scene.yaml", "poses.yaml"})
     fs::remove(fs::path(folder) / file);
 }
 
@@ -113,6 +118,30 @@ int write_dataset(const sim::DatasetSimulator& simulator, const SimulateOptions&
   std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
   std::printf("cameras %dx%d, %s images\n", config.rig.width, config.rig.height,
               config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
+  return 0;
+}
+
+/// Writes a multi-pose dataset (--poses) and prints its poses and moving frames.
+int write_multi_pose(const sim::SimulationConfig& config, const SimulateOptions& options) {
+  sim::MultiPoseConfig multi;
+  multi.base = config;
+  multi.poses = *options.poses;
+  multi.moving_frames = options.moving_frames;
+  const sim::MultiPoseSimulator simulator(multi);
+  prepare_output(options.out_dir, options.overwrite);
+  for (const auto& warning : simulator.warnings()) std::cerr << "l2s: warning: " << warning << "\n";
+  ProgressBar progress("simulate", static_cast<std::size_t>(simulator.frames()));
+  simulator.write(options.out_dir, [&](int done, int) { progress.update(done); });
+  progress.finish();
+  std::printf("wrote %s: %d frames, %zu board poses of %d frames, %zu moving frames, %s, setting %d, K = %g, seed %llu\n",
+              options.out_dir.c_str(), simulator.frames(), simulator.poses().size(), config.frames,
+              simulator.moving_frames().size(), config.lidar.c_str(), config.setting_index, config.noise_factor,
+              static_cast<unsigned long long>(config.seed));
+  for (const sim::PoseSegment& s : simulator.segments())
+    if (s.pose_index >= 0)
+      std::printf("  pose %d: frames %d-%d, board at x %.2f y %.2f z %.2f m, yaw %.0f pitch %.0f deg\n", s.pose_index,
+                  s.first_frame, s.first_frame + s.frames - 1, s.pose.x, s.pose.y, s.pose.z, s.pose.yaw * 180 / M_PI,
+                  s.pose.pitch * 180 / M_PI);
   return 0;
 }
 
@@ -143,6 +172,7 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   apply_camera_options(options, command, &config);
   if (options.lidar_quirks) config.lidar_quirks = sim::LidarQuirks::all(config.lidar_quirks.table_seed);
 
+  if (options.poses) return write_multi_pose(config, options);
   return write_dataset(sim::DatasetSimulator(config), options);
 }
 
@@ -174,6 +204,13 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
   command->add_flag("--lenient", options->lenient, "warn instead of failing when the placement check fails");
   command->add_flag("--overwrite", options->overwrite, "replace an existing dataset in out_dir");
   add_camera_options(command, options.get());
+  command->add_option("--poses", options->poses,
+                      "board poses spread over the shared view, --frames each, with moving frames between (1..5)")
+      ->check(CLI::Range(1, 5))
+      ->excludes("--random-scene");
+  command->add_option("--moving-frames", options->moving_frames,
+                      "with --poses: frames between two poses with the board on its way (default 2)")
+      ->check(CLI::Range(0, 10));
   command->add_flag("--lidar-quirks", options->lidar_quirks,
                     "simulate a real lidar: per-laser calibration table, beam divergence and mixed returns");
   command->callback([&runner, options, command] {

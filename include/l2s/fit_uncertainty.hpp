@@ -1,0 +1,60 @@
+#pragma once
+// How well labelled point pairs fix a rigid transform: per-DoF uncertainty
+// from the residuals and the Jacobian of the fit (covariance s^2 (J^T J)^-1,
+// s^2 from the residuals over their degrees of freedom), the fit's weakest
+// direction and which kind of extra board pose would constrain it most.
+
+#include <l2s/export.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace l2s {
+
+/// Names of the six degrees of freedom, in the order of every array below.
+L2S_EXPORT const std::array<const char*, 6>& dof_names();  // tx ty tz roll pitch yaw
+
+/// Uncertainty of T_target_source = pose_from_roll_pitch_yaw(roll, pitch, yaw, t).
+struct FitUncertainty {
+  bool valid = false;          ///< false: too few pairs or a singular fit (reason says which)
+  std::string reason;
+  int pairs = 0;               ///< point pairs used
+  int dof = 0;                 ///< 3 * pairs - 6
+  double sigma_residual = 0.0; ///< [m] s, the residual standard error per coordinate
+  std::array<double, 6> sigma{};     ///< [m m m rad rad rad] 1-sigma per DoF (tx ty tz roll pitch yaw)
+  std::array<double, 6> bound_95{};  ///< [m m m rad rad rad] half width of the 95 % interval (Student t with dof)
+  /// [m m m rad rad rad] Jackknife over board poses (JointRegistrar, three
+  /// or more poses; else 0): errors a pose shares across its four centres
+  /// (a depth or tilt bias of its detection) leave no residual, but move the
+  /// estimate when that pose is left out. When set, sigma and bound_95 are
+  /// the larger of the residual-based value and this one (its bound with
+  /// Student t of poses - 1 dof).
+  std::array<double, 6> sigma_between_poses{};
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();  ///< [SI] of (tx ty tz roll pitch yaw)
+  /// sqrt(lambda_max / lambda_min) of J^T J with rotations scaled by the
+  /// points' mean range (so a radian and a metre at the board weigh alike).
+  double condition = 0.0;
+  Eigen::Matrix<double, 6, 1> weakest = Eigen::Matrix<double, 6, 1>::Zero();  ///< unit eigenvector of lambda_min, scaled units
+  std::string weakest_summary;  ///< the weakest direction in words, e.g. "yaw with ty"
+  std::string suggestion;       ///< the kind of pose that adds most along it, e.g. "farther away"
+};
+
+/// Evaluates the fit `T_target_source` of `target[i]` ~ T * `source[i]`
+/// (finite pairs only). Never throws on bad data.
+L2S_EXPORT FitUncertainty fit_uncertainty(const std::vector<Eigen::Vector3d>& target,
+                                          const std::vector<Eigen::Vector3d>& source,
+                                          const Eigen::Isometry3d& T_target_source);
+
+/// [m] The rms of |target - T source| expected for new pairs at `source`
+/// (source frame) under the fit `u` of T: the residual noise of the fit's
+/// pairs plus the spread of its prediction there. 0 when `u` is not valid.
+L2S_EXPORT double prediction_rms(const FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
+                                 const std::vector<Eigen::Vector3d>& source);
+
+/// Two-sided 95 % quantile of Student's t with `dof` degrees of freedom (>= 1).
+L2S_EXPORT double student_t_95(int dof);
+
+}  // namespace l2s

@@ -1,0 +1,155 @@
+// Calibrator::result()'s registration over board poses (issue 9, "Several
+// poses"): the frames' centres are grouped into poses (PoseGrouper on the
+// lidar and camera streams), each pose's centres are clustered per sensor
+// (CenterAccumulator, as the single-pose pipeline always did) and the poses
+// whose centres cluster on both sides are fitted jointly (JointRegistrar).
+// One static pose gives the old pipeline's result exactly.
+
+#include "calibrator/pose_registration.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace l2s::detail {
+namespace {
+
+std::vector<FrameCenters> observations(const std::vector<FrameReport>& frames,
+                                       const std::optional<HoleCenters>& late_lidar) {
+  std::vector<FrameCenters> out;
+  for (const FrameReport& f : frames) {
+    FrameCenters streams(2);
+    if (f.lidar.found) streams[0] = f.lidar.centers;
+    if (f.camera.found) streams[1] = f.camera.centers;
+    out.push_back(std::move(streams));
+  }
+  if (late_lidar && !out.empty() && !out.back()[0]) out.back()[0] = *late_lidar;
+  return out;
+}
+
+PoseReport accumulate(const PoseGrouper::Pose& pose, const std::vector<FrameCenters>& streams,
+                      const CenterAccumulator::Params& params) {
+  PoseReport report;
+  report.first_frame = pose.first;
+  report.last_frame = pose.last;
+  report.frames = pose.frames;
+  report.rms = std::numeric_limits<double>::quiet_NaN();
+  CenterAccumulator lidar(params), camera(params);
+  for (int f : pose.frames) {
+    if (streams[f][0]) lidar.add(*streams[f][0]);
+    if (streams[f][1]) camera.add(*streams[f][1]);
+  }
+  report.lidar_centroids = lidar.estimate();
+  report.camera_centroids = camera.estimate();
+  if (!report.lidar_centroids.found)
+    report.reason = "lidar centres do not cluster: " + report.lidar_centroids.reason;
+  else if (!report.camera_centroids.found)
+    report.reason = "camera centres do not cluster: " + report.camera_centroids.reason;
+  return report;
+}
+
+/// The joint fit as the single-pose Registrar::Result the result always had.
+Registrar::Result as_registration(const JointRegistrar::Result& joint) {
+  if (joint.used_count() == 1) return joint.single;
+  Registrar::Result r;
+  r.found = true;
+  r.T_lidar_camera = joint.T_target_source;
+  r.rms = joint.rms;
+  for (int h = 0; h < 4; ++h) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < joint.used.size(); ++k)
+      if (joint.used[k]) sum += joint.residuals[k][h] * joint.residuals[k][h];
+    r.residuals[h] = std::sqrt(sum / joint.used_count());
+  }
+  return r;
+}
+
+/// Fits the poses whose centres cluster on both sides and records the fit.
+bool fit_poses(Calibrator::Result& result, const Calibrator::Params& params) {
+  std::vector<PosePair> pairs;
+  std::vector<int> fitted;  // index into result.poses of each pair
+  std::ostringstream why;
+  for (std::size_t p = 0; p < result.poses.size(); ++p) {
+    PoseReport& pose = result.poses[p];
+    if (!pose.lidar_centroids.found || !pose.camera_centroids.found) {
+      why << (why.tellp() > 0 ? "; " : "") << "pose " << p << ": " << pose.reason;
+      continue;
+    }
+    pairs.push_back({pose.lidar_centroids.centers, pose.camera_centroids.centers});
+    fitted.push_back(static_cast<int>(p));
+  }
+  if (pairs.empty()) {
+    // One pose keeps the message of the single-pose pipeline.
+    result.reason = result.poses.size() == 1 ? result.poses[0].reason : "no board pose is usable: " + why.str();
+    if (result.poses.empty()) result.reason = "no board pose found";
+    return false;
+  }
+  result.joint = JointRegistrar(params.joint, params.registrar).estimate(pairs);
+  if (!result.joint.found) {
+    result.reason = "registration failed: " + result.joint.reason;
+    return false;
+  }
+  bool first = true;
+  for (std::size_t k = 0; k < fitted.size(); ++k) {
+    PoseReport& pose = result.poses[fitted[k]];
+    pose.used = result.joint.used[k];
+    pose.rms = result.joint.pose_rms[k];
+    pose.reason = pose.used ? "" : "rejected: its centres disagree with the other poses";
+    if (pose.used && first) {
+      result.lidar_centroids = pose.lidar_centroids;
+      result.camera_centroids = pose.camera_centroids;
+      first = false;
+    }
+  }
+  for (const std::string& note : result.joint.notes) {
+    // JointRegistrar numbers the fitted poses; the result numbers all of them.
+    std::string n = note;
+    const std::size_t at = n.find("pose ");
+    if (at == 0) {
+      const int k = std::stoi(n.substr(5));
+      n = "pose " + std::to_string(fitted[k]) + n.substr(5 + std::to_string(k).size());
+    }
+    result.notes.push_back(n);
+  }
+  result.registration = as_registration(result.joint);
+  result.T_lidar_camera = result.joint.T_target_source;
+  return true;
+}
+
+template <class T>
+std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation& permutation) {
+  std::array<T, 4> out;
+  for (int h = 0; h < 4; ++h) out[h] = values[permutation[h]];
+  return out;
+}
+
+}  // namespace
+
+bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
+                    const Calibrator::Params& params, Calibrator::Result& result) {
+  const std::vector<FrameCenters> streams = observations(frames, late_lidar);
+  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(streams);
+  result.moving_frames = grouping.moving;
+  result.notes.insert(result.notes.end(), grouping.notes.begin(), grouping.notes.end());
+  for (const PoseGrouper::Pose& pose : grouping.poses)
+    result.poses.push_back(accumulate(pose, streams, params.accumulator));
+  return fit_poses(result, params);
+}
+
+bool refit_relabelled(Calibrator::Result& result, const HolePermutation& permutation,
+                      const Calibrator::Params& params) {
+  Calibrator::Result turned = result;
+  turned.notes.clear();
+  for (PoseReport& pose : turned.poses) {
+    CenterAccumulator::Result& camera = pose.camera_centroids;
+    camera.centers = relabel(camera.centers, permutation);
+    camera.counts = permuted(camera.counts, permutation);
+    camera.spread = permuted(camera.spread, permutation);
+  }
+  if (!fit_poses(turned, params)) return false;
+  turned.notes.insert(turned.notes.begin(), result.notes.begin(), result.notes.end());
+  result = std::move(turned);
+  return true;
+}
+
+}  // namespace l2s::detail

@@ -1,0 +1,26 @@
+#pragma once
+// The registration step of Calibrator::result(): frames -> board poses ->
+// centres clustered per pose and sensor -> one joint fit (private).
+
+#include <l2s/calibrator.hpp>
+
+#include <optional>
+
+namespace l2s::detail {
+
+/// Groups `frames` into board poses, clusters each pose's centres per sensor
+/// and registers all usable poses jointly. `late_lidar`: a lidar detection not
+/// in any frame report yet (a ring-free window detected as it stands), counted
+/// with the last frame. Fills result.poses, moving_frames, the centroids,
+/// registration, joint and T_lidar_camera; false with result.reason set when
+/// no transform is found.
+bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
+                    const Calibrator::Params& params, Calibrator::Result& result);
+
+/// The joint fit of result.poses again with every pose's camera centres
+/// relabelled by `permutation` (the labels the scene prefers); updates the
+/// centroids, registration, joint and T. False when the fit fails.
+bool refit_relabelled(Calibrator::Result& result, const HolePermutation& permutation,
+                      const Calibrator::Params& params);
+
+}  // namespace l2s::detail

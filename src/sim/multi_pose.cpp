@@ -1,0 +1,167 @@
+// The multi-pose simulator: one DatasetSimulator per static pose (its frames
+// share one clean render, as a single-pose dataset does) and one per moving
+// frame (the board part of the way between two poses). Each stretch draws
+// its noise from its own seed, derived from the config's.
+
+#include <l2s/sim/multi_pose.hpp>
+
+#include <l2s/error.hpp>
+#include <l2s/io/dataset.hpp>
+
+#include "detail/atomic_file.hpp"
+#include "sim/parallel.hpp"
+#include "sim/random.hpp"
+#include "sim/scene_record.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <sstream>
+
+namespace l2s::sim {
+namespace {
+
+constexpr std::uint64_t kSegmentStream = 0x905EULL;
+
+BoardPose between(const BoardPose& a, const BoardPose& b, double f) {
+  const auto mix = [f](double u, double v) { return u + (v - u) * f; };
+  return {mix(a.x, b.x), mix(a.y, b.y), mix(a.z, b.z), mix(a.yaw, b.yaw), mix(a.pitch, b.pitch), mix(a.roll, b.roll)};
+}
+
+std::string stem_of(int index) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%06d", index);
+  return buffer;
+}
+
+std::string poses_yaml(const std::vector<PoseSegment>& segments) {
+  std::ostringstream out;
+  out.precision(9);
+  out << "# Board poses of this recording, camera body frame (scene.yaml's board_pose convention).\n"
+         "# pose: -1 marks a frame taken while the board was carried between two poses.\n"
+         "segments:\n";
+  for (const PoseSegment& s : segments)
+    out << "  - {pose: " << s.pose_index << ", first_frame: " << s.first_frame << ", frames: " << s.frames
+        << ", x: " << s.pose.x << ", y: " << s.pose.y << ", z: " << s.pose.z << ", yaw: " << s.pose.yaw
+        << ", pitch: " << s.pose.pitch << ", roll: " << s.pose.roll << "}\n";
+  return out.str();
+}
+
+}  // namespace
+
+void MultiPoseConfig::validate() const {
+  base.validate();
+  if (poses < 1 || poses > 5) throw ParamError("poses", "must be 1..5");
+  if (moving_frames < 0 || moving_frames > 10) throw ParamError("moving_frames", "must be 0..10");
+}
+
+struct MultiPoseSimulator::Impl {
+  MultiPoseConfig config;
+  std::vector<PoseSegment> segments;
+  std::vector<std::unique_ptr<DatasetSimulator>> simulators;  // one per segment
+  std::vector<std::string> warnings;
+  int frames = 0;
+
+  void add(const BoardPose& pose, int count, int pose_index) {
+    SimulationConfig c = config.base;
+    c.board_pose = pose;
+    c.frames = count;
+    // The first stretch keeps the config's seed; the others derive theirs.
+    if (!segments.empty()) c.seed = detail::hash_counters(config.base.seed, kSegmentStream, segments.size());
+    c.strict_placement = pose_index >= 0;  // a board on its way may leave the view
+    segments.push_back({pose, frames, count, pose_index});
+    simulators.push_back(std::make_unique<DatasetSimulator>(c));
+    frames += count;
+  }
+};
+
+MultiPoseSimulator::MultiPoseSimulator(MultiPoseConfig config) : impl_(std::make_unique<Impl>()) {
+  config.validate();
+  Impl& s = *impl_;
+  s.config = std::move(config);
+  const std::vector<BoardPose> poses = find_pose_spread(s.config.base, s.config.poses);
+  if (poses.empty()) throw Error("simulator: no board pose passes the placement check for any slot of the view");
+  if (static_cast<int>(poses.size()) < s.config.poses)
+    s.warnings.push_back("only " + std::to_string(poses.size()) + " of " + std::to_string(s.config.poses) +
+                         " board poses pass the placement check");
+  const int moving = s.config.moving_frames;
+  for (std::size_t p = 0; p < poses.size(); ++p) {
+    if (p > 0)
+      for (int m = 1; m <= moving; ++m) s.add(between(poses[p - 1], poses[p], m / (moving + 1.0)), 1, -1);
+    s.add(poses[p], s.config.base.frames, static_cast<int>(p));
+  }
+}
+
+MultiPoseSimulator::~MultiPoseSimulator() = default;
+MultiPoseSimulator::MultiPoseSimulator(MultiPoseSimulator&&) noexcept = default;
+MultiPoseSimulator& MultiPoseSimulator::operator=(MultiPoseSimulator&&) noexcept = default;
+
+int MultiPoseSimulator::frames() const { return impl_->frames; }
+
+SimulatedFrame MultiPoseSimulator::frame(int index) const {
+  if (index < 0 || index >= impl_->frames) throw ParamError("frame", "index out of range");
+  for (std::size_t k = 0; k < impl_->segments.size(); ++k) {
+    const PoseSegment& s = impl_->segments[k];
+    if (index < s.first_frame + s.frames) return impl_->simulators[k]->frame(index - s.first_frame);
+  }
+  throw ParamError("frame", "index out of range");  // not reached
+}
+
+const std::vector<PoseSegment>& MultiPoseSimulator::segments() const { return impl_->segments; }
+
+std::vector<int> MultiPoseSimulator::moving_frames() const {
+  std::vector<int> out;
+  for (const PoseSegment& s : impl_->segments)
+    if (s.pose_index < 0)
+      for (int i = 0; i < s.frames; ++i) out.push_back(s.first_frame + i);
+  return out;
+}
+
+std::vector<BoardPose> MultiPoseSimulator::poses() const {
+  std::vector<BoardPose> out;
+  for (const PoseSegment& s : impl_->segments)
+    if (s.pose_index >= 0) out.push_back(s.pose);
+  return out;
+}
+
+Eigen::Isometry3d MultiPoseSimulator::T_lidar_camera() const { return impl_->config.base.T_lidar_camera(); }
+StereoCamera MultiPoseSimulator::cameras() const { return impl_->config.base.rig.cameras(); }
+const MultiPoseConfig& MultiPoseSimulator::config() const { return impl_->config; }
+std::vector<std::string> MultiPoseSimulator::warnings() const { return impl_->warnings; }
+
+void MultiPoseSimulator::write(const std::string& folder, const ProgressCallback& progress) const {
+  const Impl& s = *impl_;
+  const io::DatasetWriter writer(folder, cameras(), s.config.base.target);
+  writer.write_ground_truth(T_lidar_camera());
+  const DatasetSimulator& first = *s.simulators.front();
+  detail::write_scene_record(folder + "/scene.yaml", first.config(), first.board_pose(), first.scene(),
+                             first.lidar_model(), first.placement());
+  l2s::detail::write_file_atomically(folder + "/poses.yaml", poses_yaml(s.segments));
+  std::mutex mutex;
+  int done = 0;
+  std::exception_ptr failure;
+  detail::parallel_for(s.frames, s.config.base.threads, [&](int i) {
+    try {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (failure) return;
+      }
+      SimulatedFrame simulated = frame(i);
+      io::Frame out;
+      out.stem = stem_of(i);
+      out.lidar = std::move(simulated.lidar);
+      out.left = std::move(simulated.left);
+      out.right = std::move(simulated.right);
+      writer.write(out);
+      std::lock_guard<std::mutex> lock(mutex);
+      ++done;
+      if (progress) progress(done, s.frames);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!failure) failure = std::current_exception();
+    }
+  }, 1);
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace l2s::sim

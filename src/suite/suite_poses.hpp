@@ -1,0 +1,27 @@
+#pragma once
+// The suite's "poses" experiment (issue 9): one recording of five board
+// poses per setting, calibrated once per preset and evaluated after the
+// first 1, 2, 3 and 5 poses; with the uncertainty's coverage of the true
+// error and any moving frame that entered a pose (private).
+
+#include <l2s/sim/suite.hpp>
+
+#include <sstream>
+#include <vector>
+
+namespace l2s::sim::detail {
+
+constexpr int kPoseFrames = 10;   ///< frames per pose
+constexpr int kMovingFrames = 2;  ///< frames between two poses
+constexpr int kMostPoses = 5;
+/// Frames of the recording with the first `poses` poses.
+constexpr int pose_recording_frames(int poses) { return poses * kPoseFrames + (poses - 1) * kMovingFrames; }
+
+/// Runs a group of the poses experiment (as run_suite_group).
+std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells, int threads,
+                                      const std::function<void()>& on_frame);
+
+/// The "poses" section of summary.md.
+void write_poses_summary(std::ostringstream& out, const std::vector<const SuiteRow*>& rows);
+
+}  // namespace l2s::sim::detail
