@@ -2,6 +2,7 @@
 
 #include <l2s/io/ring_recovery.hpp>
 
+#include <algorithm>
 #include <optional>
 
 #include "detail/board_frame.hpp"
@@ -103,6 +104,22 @@ void keep_stages(LidarInspection& t, const LidarAttempt& attempt) {
   if (attempt.edges.found || attempt.occupancy.found) t.circles = attempt.circles;
 }
 
+/// The plane search of this cloud. A ring-free lidar's field of view has a
+/// hard outline (the Avia's ellipse, the Mid-360's lowest 7 deg) that can cut
+/// the board, and its dense cloud still shows every hole that is in view: its
+/// board candidates need only be long enough to hold the hole pattern with
+/// half a radius of rim beyond it. The holes then verify the candidate.
+PlaneSegmenter::Params plane_params(const Calibrator::Params& params, bool ring_free, const Target& target) {
+  PlaneSegmenter::Params plane = params.lidar_plane;
+  if (!ring_free) return plane;
+  const bool wide = target.board_width >= target.board_height;
+  const double spacing = wide ? target.hole_spacing_x : target.hole_spacing_y;
+  const double pattern = spacing + 3.0 * target.hole_radius;
+  plane.min_length_fraction =
+      std::min(plane.min_length_fraction, pattern / std::max(target.board_width, target.board_height));
+  return plane;
+}
+
 }  // namespace
 
 BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
@@ -129,7 +146,8 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
     if (!t.ring_free) io::recover_rings(cloud);
   }
 
-  const auto& planes = t.plane.emplace(PlaneSegmenter(params.lidar_plane).segment(cloud.points, target));
+  const PlaneSegmenter segmenter(plane_params(params, t.ring_free, target));
+  const auto& planes = t.plane.emplace(segmenter.segment(cloud.points, target));
   if (!planes.found) return fail(report, "plane", planes.reason);
 
   LidarHypothesisTester tester(cloud, t.ring_free, planes, target, params);
