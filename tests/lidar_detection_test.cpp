@@ -162,5 +162,23 @@ TEST(LidarDetection, RingFreeBoardCutByTheFieldOfViewIsFound) {
   EXPECT_LT(centre_error(in.report.centers, scene.true_centers()), 0.005);
 }
 
+TEST(LidarDetection, AWindowOfRingFreeSweepsIsNotClassifiedAgain) {
+  // The Calibrator found each sweep ring-free; their accumulation, cropped by
+  // the pass-through to the board's surroundings, can still show scan lines
+  // (a real Avia window in a random scene: 9 lines). The window is ring-free as
+  // its sweeps were: here, sweeps of a 64-beam scan without a ring field.
+  Scene scene;
+  std::vector<LidarCloud> sweeps;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    LidarCloud sweep = test::scan(scene, test::beams64(), seed);
+    sweep.ring.clear();
+    sweeps.push_back(sweep);
+  }
+  const LidarInspection in = inspect_lidar(sweeps, scene.target, Calibrator::Params::preset("default"));
+  EXPECT_TRUE(in.ring_free);
+  EXPECT_TRUE(in.occupancy.has_value());
+  EXPECT_FALSE(in.discontinuities.has_value());
+}
+
 }  // namespace
 }  // namespace l2s

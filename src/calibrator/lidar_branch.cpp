@@ -120,13 +120,13 @@ PlaneSegmenter::Params plane_params(const Calibrator::Params& params, bool ring_
   return plane;
 }
 
-}  // namespace
-
-BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
-                              LidarInspection* trace) {
+/// The branch on `sweep`; `ring_free` when the caller knows the cloud has no
+/// ring structure (a window of ring-free sweeps), else it is classified here.
+BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
+                        LidarInspection* trace, bool known_ring_free) {
   LidarInspection local;
   LidarInspection& t = trace ? *trace : local;
-  BranchReport report;
+  BranchReport report{};
   if (sweep.empty()) return fail(report, "input", "empty sweep");
   if (sweep.has_ring() && sweep.ring.size() != sweep.size())
     return fail(report, "input", "ring field has a different length than the points");
@@ -142,7 +142,7 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   // Rings are recovered after filtering: the board's rings are what matters, and
   // fewer points cluster faster. A cloud without a ring structure is ring-free.
   if (!cloud.has_ring()) {
-    t.ring_free = io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
+    t.ring_free = known_ring_free || io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
     if (!t.ring_free) io::recover_rings(cloud);
   }
 
@@ -167,6 +167,18 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   report.found = true;
   report.centers = best->circles.centers;
   return report;
+}
+
+}  // namespace
+
+BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
+                              LidarInspection* trace) {
+  return run_branch(sweep, target, params, trace, false);
+}
+
+BranchReport run_ring_free_branch(const LidarCloud& window, const Target& target, const Calibrator::Params& params,
+                                  LidarInspection* trace) {
+  return run_branch(window, target, params, trace, true);
 }
 
 bool is_ring_free(const LidarCloud& sweep) {
