@@ -4,6 +4,8 @@
 // window of ring_free_frames sweeps goes through the lidar branch (default
 // preset). Prints one line per window: found, or the failing stage and
 // reason; the worst centre error against ground truth; the apparent radius.
+// SURVEY_CALIBRATE=1 also calibrates each scene from all its frames (both
+// branches) and prints e_t, e_r and the check's verdict.
 //
 //   ring_free_survey MODEL FIRST_SEED COUNT [WINDOWS]
 //
@@ -12,6 +14,7 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
+#include <l2s/metrics.hpp>
 #include <l2s/frame_inspector.hpp>
 #include <l2s/io/image_io.hpp>
 #include <l2s/sim/lidar_scene_draw.hpp>
@@ -85,6 +88,24 @@ std::string corners_in_view(const DatasetSimulator& sim) {
   return out;
 }
 
+/// The whole calibration of the scene's frames (both branches, default
+/// preset): e_t, e_r against ground truth and the check's verdict.
+std::string calibrate(const DatasetSimulator& sim) {
+  l2s::Calibrator calibrator(sim.cameras(), sim.config().target, l2s::Calibrator::Params::preset("default"));
+  for (int i = 0; i < sim.config().frames; ++i) {
+    const auto frame = sim.frame(i);
+    calibrator.add(frame.lidar, frame.left, frame.right);
+  }
+  const auto result = calibrator.result();
+  if (!result.found) return "calibration: not found: " + result.reason.substr(0, 200);
+  const auto error = l2s::pose_error(result.T_lidar_camera, sim.T_lidar_camera());
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, "calibration: e_t %.1f mm, e_r %.3f deg, %d lidar / %d camera frames, %s",
+                error.translation * 1e3, error.rotation * 180.0 / M_PI, result.lidar_frames, result.camera_frames,
+                l2s::verdict_name(result.quality.verdict));
+  return buffer;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,6 +128,15 @@ int main(int argc, char** argv) {
       continue;
     }
     const auto gt = truth(*sim);
+    if (std::getenv("SURVEY_VERBOSE")) {
+      const auto& c = sim->config();
+      const auto& b = sim->board_pose();
+      std::printf("  lidar pose %.3f %.3f %.3f %.3f %.3f %.3f; board %.3f %.3f %.3f yaw %.3f pitch %.3f roll %.3f; "
+                  "stand %d side walls %.2f near clutter %d pillar %d wall gap %.2f\n",
+                  c.setting.tx, c.setting.ty, c.setting.tz, c.setting.yaw, c.setting.pitch, c.setting.roll, b.x, b.y,
+                  b.z, b.yaw, b.pitch, b.roll, c.layout.board_stand, c.layout.side_wall_distance,
+                  c.layout.near_clutter, c.layout.pillar, c.layout.wall_gap);
+    }
     for (int w = 0; w < windows; ++w) {
       std::vector<l2s::LidarCloud> sweeps;
       for (int i = 0; i < n; ++i) sweeps.push_back(sim->sweep(w * n + i));
@@ -122,6 +152,13 @@ int main(int argc, char** argv) {
         std::printf("FAIL [%s] %s\n    %s; occupancy holes %d\n", t.report.failed_stage.c_str(),
                     t.report.reason.substr(0, 300).c_str(), corners_in_view(*sim).c_str(),
                     t.occupancy ? t.occupancy->holes : -1);
+        if (std::getenv("SURVEY_VERBOSE") && t.plane) {
+          const Eigen::Vector3d board_centre = (gt[0] + gt[1] + gt[2] + gt[3]) / 4.0;
+          int k = 0;
+          for (const auto& c : t.plane->candidates)
+            std::printf("    plane #%d %+.3f m from the board centre, %zu support: %s\n", k++,
+                        c.plane.signedDistance(board_centre), c.support, c.reason.empty() ? "plausible" : c.reason.c_str());
+        }
         continue;
       }
       ++found;
@@ -134,6 +171,8 @@ int main(int argc, char** argv) {
       std::printf("found, worst centre %.1f mm, r %.1f mm, rms %.1f mm\n", worst * 1e3,
                   t.report.hole_radius * 1e3, t.report.fit_rms * 1e3);
     }
+    if (std::getenv("SURVEY_CALIBRATE")) std::printf("%s seed %llu %s\n", model.c_str(),
+                                                    static_cast<unsigned long long>(seed), calibrate(*sim).c_str());
     std::fflush(stdout);
   }
   std::sort(errors.begin(), errors.end());
