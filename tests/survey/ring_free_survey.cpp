@@ -157,7 +157,8 @@ int main(int argc, char** argv) {
           int k = 0;
           for (const auto& c : t.plane->candidates)
             std::printf("    plane #%d %+.3f m from the board centre, %zu support: %s\n", k++,
-                        c.plane.signedDistance(board_centre), c.support, c.reason.empty() ? "plausible" : c.reason.c_str());
+                        c.plane.signedDistance(board_centre), c.support,
+                        c.reason.empty() ? "plausible" : c.reason.c_str());
         }
         continue;
       }
