@@ -60,6 +60,27 @@ TEST(OccupancyEdgeFilter, FindsTheFourRimsOfADenseBoard) {
   for (int h = 0; h < 4; ++h) EXPECT_LT((circles.centers[h] - truth[h]).norm(), 0.006) << "hole " << h;
 }
 
+TEST(OccupancyEdgeFilter, CompletesHolesCutByTheEdgeOfTheFieldOfView) {
+  // A Mid-360 sees nothing below -7 deg: that edge runs through the lower
+  // holes (0.06 m under their centres), which open onto the unscanned
+  // outside. The two upper holes and the pattern's spacing say where they are.
+  Scene scene;
+  scene.T_sensor_board = board_pose({3.0, 0.2, 0.0}, 15.0 * kDeg);
+  const double lowest = std::atan2(-0.2 - 0.06, 3.0);
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& p : random_scan(scene, 80000, 0.02, 3))
+    if (std::atan2(p.z(), p.head<2>().norm()) > lowest) points.push_back(p);
+  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
+                                                   Eigen::Vector3d::UnitZ(), scene.target);
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.holes, 4);
+  const auto circles = CircleFinder().find(result.edges, scene.visible_plane(), Eigen::Vector3d::UnitZ(),
+                                           scene.target);
+  ASSERT_TRUE(circles.found) << circles.reason;
+  const HoleCenters truth = scene.true_centers();
+  for (int h = 0; h < 4; ++h) EXPECT_LT((circles.centers[h] - truth[h]).norm(), 0.006) << "hole " << h;
+}
+
 TEST(OccupancyEdgeFilter, SparseBoardSaysWhy) {
   Scene scene;
   const auto points = random_scan(scene, 400, 0.02, 2);

@@ -5,7 +5,8 @@
 // a second or two is covered densely. Its points, seen in the board plane,
 // form an occupancy image: places a radius away from any board point, with
 // board all around, are the holes' centres; the board points bordering them
-// are the rims.
+// are the rims. A hole that the field of view's edge runs through is open on
+// one side: two holes found at the pattern's spacing predict it.
 
 #include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
@@ -39,7 +40,9 @@ class L2S_EXPORT OccupancyEdgeFilter {
     std::vector<Eigen::Vector3d> edges;  ///< [m] rim points, sensor frame (board returns)
     std::size_t board_points = 0;        ///< board points used
     double cell = 0.0;                   ///< [m] occupancy cell
-    int holes = 0;                       ///< places found deep enough and surrounded by board
+    /// Places found deep enough and surrounded by board, and those the hole
+    /// pattern predicts that show a rim arc.
+    int holes = 0;
   };
 
   // Two constructors rather than `Params params = {}` (see PlaneSegmenter).

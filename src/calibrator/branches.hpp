@@ -21,6 +21,12 @@ namespace l2s::detail {
 BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target,
                               const Calibrator::Params& params, LidarInspection* trace = nullptr);
 
+/// The lidar branch on a window of ring-free sweeps (accumulate_ring_free):
+/// ring-free as its sweeps were found to be, not classified again (a window
+/// after pass-through can show chance lines that one sweep does not).
+BranchReport run_ring_free_branch(const LidarCloud& window, const Target& target,
+                                  const Calibrator::Params& params, LidarInspection* trace = nullptr);
+
 /// Does this sweep lack a usable ring structure (no ring field, and none to
 /// recover from its elevations)? Such sweeps are accumulated, then detected
 /// as one ring-free cloud.

@@ -76,7 +76,7 @@ struct Calibrator::Impl {
     } else {
       std::vector<const LidarCloud*> window;
       for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
-      report = detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params, trace);
+      report = detail::run_ring_free_branch(detail::accumulate_ring_free(window, params), target, params, trace);
       ring_free_window.clear();
     }
     report.milliseconds = milliseconds_since(start);
@@ -90,7 +90,7 @@ struct Calibrator::Impl {
     if (ring_free_window.empty()) return std::nullopt;
     std::vector<const LidarCloud*> window;
     for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
-    return detail::run_lidar_branch(detail::accumulate_ring_free(window, params), target, params);
+    return detail::run_ring_free_branch(detail::accumulate_ring_free(window, params), target, params);
   }
 
   // Names the frame, accumulates what its branches found, keeps its report,

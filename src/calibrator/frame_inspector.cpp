@@ -284,9 +284,16 @@ LidarInspection inspect_lidar(const LidarCloud& sweep, const Target& target,
 
 LidarInspection inspect_lidar(const std::vector<LidarCloud>& sweeps, const Target& target,
                               const Calibrator::Params& params) {
+  params.validate();
+  target.validate();
   std::vector<const LidarCloud*> window;
   for (const LidarCloud& sweep : sweeps) window.push_back(&sweep);
-  return inspect_lidar(detail::accumulate_ring_free(window, params), target, params);
+  LidarInspection inspection;
+  const auto start = std::chrono::steady_clock::now();
+  inspection.report = detail::run_ring_free_branch(detail::accumulate_ring_free(window, params), target, params,
+                                                   &inspection);
+  inspection.report.milliseconds = elapsed_ms(start);
+  return inspection;
 }
 
 CameraInspection inspect_camera(const Image& left, const Image& right, const StereoCamera& cameras,

@@ -2,6 +2,7 @@
 
 #include <l2s/io/ring_recovery.hpp>
 
+#include <algorithm>
 #include <optional>
 
 #include "detail/board_frame.hpp"
@@ -103,13 +104,29 @@ void keep_stages(LidarInspection& t, const LidarAttempt& attempt) {
   if (attempt.edges.found || attempt.occupancy.found) t.circles = attempt.circles;
 }
 
-}  // namespace
+/// The plane search of this cloud. A ring-free lidar's field of view has a
+/// hard outline (the Avia's ellipse, the Mid-360's lowest 7 deg) that can cut
+/// the board, and its dense cloud still shows every hole that is in view: its
+/// board candidates need only be long enough to hold the hole pattern with
+/// half a radius of rim beyond it. The holes then verify the candidate.
+PlaneSegmenter::Params plane_params(const Calibrator::Params& params, bool ring_free, const Target& target) {
+  PlaneSegmenter::Params plane = params.lidar_plane;
+  if (!ring_free) return plane;
+  const bool wide = target.board_width >= target.board_height;
+  const double spacing = wide ? target.hole_spacing_x : target.hole_spacing_y;
+  const double pattern = spacing + 3.0 * target.hole_radius;
+  plane.min_length_fraction =
+      std::min(plane.min_length_fraction, pattern / std::max(target.board_width, target.board_height));
+  return plane;
+}
 
-BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
-                              LidarInspection* trace) {
+/// The branch on `sweep`; `ring_free` when the caller knows the cloud has no
+/// ring structure (a window of ring-free sweeps), else it is classified here.
+BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
+                        LidarInspection* trace, bool known_ring_free) {
   LidarInspection local;
   LidarInspection& t = trace ? *trace : local;
-  BranchReport report;
+  BranchReport report{};
   if (sweep.empty()) return fail(report, "input", "empty sweep");
   if (sweep.has_ring() && sweep.ring.size() != sweep.size())
     return fail(report, "input", "ring field has a different length than the points");
@@ -125,11 +142,12 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   // Rings are recovered after filtering: the board's rings are what matters, and
   // fewer points cluster faster. A cloud without a ring structure is ring-free.
   if (!cloud.has_ring()) {
-    t.ring_free = io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
+    t.ring_free = known_ring_free || io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
     if (!t.ring_free) io::recover_rings(cloud);
   }
 
-  const auto& planes = t.plane.emplace(PlaneSegmenter(params.lidar_plane).segment(cloud.points, target));
+  const PlaneSegmenter segmenter(plane_params(params, t.ring_free, target));
+  const auto& planes = t.plane.emplace(segmenter.segment(cloud.points, target));
   if (!planes.found) return fail(report, "plane", planes.reason);
 
   LidarHypothesisTester tester(cloud, t.ring_free, planes, target, params);
@@ -149,6 +167,18 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, con
   report.found = true;
   report.centers = best->circles.centers;
   return report;
+}
+
+}  // namespace
+
+BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
+                              LidarInspection* trace) {
+  return run_branch(sweep, target, params, trace, false);
+}
+
+BranchReport run_ring_free_branch(const LidarCloud& window, const Target& target, const Calibrator::Params& params,
+                                  LidarInspection* trace) {
+  return run_branch(window, target, params, trace, true);
 }
 
 bool is_ring_free(const LidarCloud& sweep) {

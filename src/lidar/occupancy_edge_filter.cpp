@@ -4,8 +4,10 @@
 //  2. One-cell gaps in the coverage are filled (occupied on both sides). A
 //     hole's centre is a place about a radius from the nearest board point
 //     (distance transform of the empty cells) with board all around; gaps in
-//     a non-repetitive scan's coverage are narrow, the outside is open.
-//  3. Around each hole (centre: its cells' centroid), the innermost board
+//     a non-repetitive scan's coverage are narrow, the outside is open. A
+//     hole the field of view cuts is open too: two holes found at the
+//     pattern's spacing predict it, and a rim arc there confirms it.
+//  3. Around each hole (centre: its distance peak), the innermost board
 //     point in each direction (sectors two point spacings wide at the rim)
 //     is a rim point, moved half a spacing inwards. Strays inside a hole sit
 //     farther in and are ignored when nearer than half a radius; the circle
@@ -15,6 +17,7 @@
 #include <l2s/error.hpp>
 
 #include "detail/plane_frame.hpp"
+#include "lidar/hole_completion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -72,18 +75,24 @@ class OccupancyGrid {
   std::vector<int> count_;
 };
 
+/// [cells] each cell's distance to the nearest occupied cell (0 when occupied).
+cv::Mat empty_distance(const OccupancyGrid& grid) {
+  cv::Mat empty(grid.height(), grid.width(), CV_8UC1);
+  for (int y = 0; y < grid.height(); ++y)
+    for (int x = 0; x < grid.width(); ++x) empty.at<std::uint8_t>(y, x) = grid.empty(x, y) ? 255 : 0;
+  cv::Mat distance;
+  cv::distanceTransform(empty, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  return distance;
+}
+
 /// Hole centres: places of the grid that are far from every board point
 /// (local maxima of the distance to the nearest occupied cell, about a
 /// radius) and surrounded by board in every direction. Gaps in a scan's
 /// coverage are narrow, so they stay near board; the outside is not
 /// surrounded.
-std::vector<Eigen::Vector2d> hole_centres(const OccupancyGrid& grid, double radius, double min_depth) {
+std::vector<Eigen::Vector2d> hole_centres(const OccupancyGrid& grid, const cv::Mat& distance, double radius,
+                                          double min_depth) {
   const int w = grid.width(), h = grid.height();
-  cv::Mat empty(h, w, CV_8UC1);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) empty.at<std::uint8_t>(y, x) = grid.empty(x, y) ? 255 : 0;
-  cv::Mat distance;
-  cv::distanceTransform(empty, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   const double cell = grid.cell();
   const auto surrounded = [&](int x, int y) {
     const int reach = static_cast<int>(std::ceil(1.6 * radius / cell));
@@ -141,6 +150,31 @@ std::vector<std::size_t> rim_points(const std::vector<Eigen::Vector2d>& uv, cons
   return out;
 }
 
+/// The holes found, and those the hole pattern adds (hole_completion.hpp): a
+/// place two found holes predict is a hole when it is empty a hole's depth
+/// around and at least a third of the directions from it meet board a
+/// radius away (within a fifth of it): a rim arc. A hole cut by the field of
+/// view keeps the arc on its scanned side; a place beside the board's
+/// straight edge meets it at a radius in too few directions.
+std::vector<Eigen::Vector2d> with_pattern_holes(std::vector<Eigen::Vector2d> centres,
+                                                const std::vector<Eigen::Vector2d>& uv, const OccupancyGrid& grid,
+                                                const cv::Mat& distance, const Target& target, double min_depth,
+                                                int sectors) {
+  const double r = target.hole_radius;
+  for (const Eigen::Vector2d& q :
+       detail::predicted_holes(centres, target.hole_spacing_x, target.hole_spacing_y, 0.25 * r)) {
+    if (std::any_of(centres.begin(), centres.end(), [&](const auto& k) { return (k - q).norm() < r; })) continue;
+    const Eigen::Vector2i c = grid.cell_of(q);
+    if (c.x() < 0 || c.y() < 0 || c.x() >= grid.width() || c.y() >= grid.height()) continue;
+    if (distance.at<float>(c.y(), c.x()) * grid.cell() < min_depth * r) continue;
+    const auto rim = rim_points(uv, q, r, sectors);
+    const auto on_arc = std::count_if(rim.begin(), rim.end(),
+                                      [&](std::size_t k) { return std::abs((uv[k] - q).norm() - r) < 0.2 * r; });
+    if (3 * on_arc >= sectors) centres.push_back(q);
+  }
+  return centres;
+}
+
 }  // namespace
 
 void OccupancyEdgeFilter::Params::validate() const {
@@ -182,10 +216,13 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
   result.cell = std::clamp(params_.cell_factor * spacing, params_.min_cell, params_.max_cell);
   OccupancyGrid grid(uv, result.cell);
   grid.close_gaps();
-  for (const Eigen::Vector2d& centre : hole_centres(grid, target.hole_radius, params_.min_hole_depth)) {
+  const cv::Mat distance = empty_distance(grid);
+  const int sectors = std::clamp(static_cast<int>(M_PI * target.hole_radius / spacing), 8, params_.rim_sectors);
+  const auto found = hole_centres(grid, distance, target.hole_radius, params_.min_hole_depth);
+  for (const Eigen::Vector2d& centre :
+       with_pattern_holes(found, uv, grid, distance, target, params_.min_hole_depth, sectors)) {
     ++result.holes;
     // Each rim point is moved half a spacing in, onto the rim it stands for.
-    const int sectors = std::clamp(static_cast<int>(M_PI * target.hole_radius / spacing), 8, params_.rim_sectors);
     for (const std::size_t k : rim_points(uv, centre, target.hole_radius, sectors)) {
       const Eigen::Vector2d inward = (centre - uv[k]).normalized() * 0.5 * spacing;
       result.edges.push_back(frame.to_sensor(uv[k] + inward) + frame.height(points[board[k]]) * frame.normal);
