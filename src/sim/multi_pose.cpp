@@ -9,13 +9,10 @@
 #include <l2s/io/dataset.hpp>
 
 #include "detail/atomic_file.hpp"
-#include "sim/parallel.hpp"
+#include "sim/frame_writer.hpp"
 #include "sim/random.hpp"
 #include "sim/scene_record.hpp"
 
-#include <cstdio>
-#include <exception>
-#include <mutex>
 #include <sstream>
 
 namespace l2s::sim {
@@ -26,12 +23,6 @@ constexpr std::uint64_t kSegmentStream = 0x905EULL;
 BoardPose between(const BoardPose& a, const BoardPose& b, double f) {
   const auto mix = [f](double u, double v) { return u + (v - u) * f; };
   return {mix(a.x, b.x), mix(a.y, b.y), mix(a.z, b.z), mix(a.yaw, b.yaw), mix(a.pitch, b.pitch), mix(a.roll, b.roll)};
-}
-
-std::string stem_of(int index) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%06d", index);
-  return buffer;
 }
 
 std::string poses_yaml(const std::vector<PoseSegment>& segments) {
@@ -137,31 +128,7 @@ void MultiPoseSimulator::write(const std::string& folder, const ProgressCallback
   detail::write_scene_record(folder + "/scene.yaml", first.config(), first.board_pose(), first.scene(),
                              first.lidar_model(), first.placement());
   l2s::detail::write_file_atomically(folder + "/poses.yaml", poses_yaml(s.segments));
-  std::mutex mutex;
-  int done = 0;
-  std::exception_ptr failure;
-  detail::parallel_for(s.frames, s.config.base.threads, [&](int i) {
-    try {
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (failure) return;
-      }
-      SimulatedFrame simulated = frame(i);
-      io::Frame out;
-      out.stem = stem_of(i);
-      out.lidar = std::move(simulated.lidar);
-      out.left = std::move(simulated.left);
-      out.right = std::move(simulated.right);
-      writer.write(out);
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
-      if (progress) progress(done, s.frames);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!failure) failure = std::current_exception();
-    }
-  }, 1);
-  if (failure) std::rethrow_exception(failure);
+  detail::write_frames(writer, s.frames, s.config.base.threads, [this](int i) { return frame(i); }, progress);
 }
 
 }  // namespace l2s::sim

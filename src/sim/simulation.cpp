@@ -8,14 +8,11 @@
 #include <l2s/sim/lidar_simulator.hpp>
 #include <l2s/sim/ray_caster.hpp>
 
-#include "sim/parallel.hpp"
+#include "sim/frame_writer.hpp"
 #include "sim/random.hpp"
 #include "sim/scene_record.hpp"
 
 #include <cmath>
-#include <cstdio>
-#include <exception>
-#include <mutex>
 
 namespace l2s::sim {
 namespace {
@@ -23,12 +20,6 @@ namespace {
 // Salts that give images and lidar independent random streams from one seed.
 constexpr std::uint64_t kImageStream = 0x1A6EULL;
 constexpr std::uint64_t kLidarStream = 0x71DAULL;
-
-std::string stem_of(int index) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%06d", index);
-  return buffer;
-}
 
 }  // namespace
 
@@ -150,34 +141,7 @@ void DatasetSimulator::write(const std::string& folder, const ProgressCallback& 
   const io::DatasetWriter writer(folder, cameras(), s.config.target);
   writer.write_ground_truth(T_lidar_camera());
   detail::write_scene_record(folder + "/scene.yaml", s.config, s.pose, s.scene, s.model, s.placement);
-  // Frames are independent (each draws its own noise), so workers take them
-  // in any order: PNG encoding dominates and would leave a core idle otherwise.
-  // Progress is reported in completion count order from under a lock.
-  std::mutex mutex;
-  int done = 0;
-  std::exception_ptr failure;
-  detail::parallel_for(s.config.frames, s.config.threads, [&](int i) {
-    try {
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (failure) return;
-      }
-      SimulatedFrame simulated = frame(i);
-      io::Frame out;
-      out.stem = stem_of(i);
-      out.lidar = std::move(simulated.lidar);
-      out.left = std::move(simulated.left);
-      out.right = std::move(simulated.right);
-      writer.write(out);
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
-      if (progress) progress(done, s.config.frames);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!failure) failure = std::current_exception();
-    }
-  }, 1);
-  if (failure) std::rethrow_exception(failure);
+  detail::write_frames(writer, s.config.frames, s.config.threads, [this](int i) { return frame(i); }, progress);
 }
 
 const SimulationConfig& DatasetSimulator::config() const { return impl_->config; }
