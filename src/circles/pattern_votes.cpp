@@ -12,6 +12,7 @@ namespace l2s::detail {
 namespace {
 
 constexpr std::size_t kPeaksPerAngle = 3;
+constexpr double kMaxCells = 6.0e4;  // ~2.4 x 2.4 m at 1 cm
 constexpr std::size_t kPlacementsJudged = 40;  // the most voted placements, judged by their weakest hole
 constexpr double kMinRadialCos = 0.7;          // a rim point's gradient within ~45 deg of its radius
 
@@ -59,7 +60,9 @@ std::vector<Placement> voted_placements(const std::vector<Eigen::Vector2d>& cent
   for (const Eigen::Vector2d& c : centres) box.extend(c);
   double reach = 0.0;  // [m] farthest hole from the pattern centre
   for (const Eigen::Vector2d& h : holes) reach = std::max(reach, h.norm());
-  VoteGrid grid(box, reach, cell);
+  // The grid is cleared, smoothed and searched once per angle: a wide spread
+  // of edges (a wall taken for the board) coarsens its cells instead.
+  VoteGrid grid(box, reach, cell, kMaxCells);
   // An angle step that moves the farthest hole by about one cell; the
   // pattern is symmetric under a half turn, so half a turn covers every roll.
   const int steps = std::max(8, static_cast<int>(std::ceil(M_PI * reach / grid.cell())));

@@ -5,10 +5,10 @@
 
 namespace l2s::detail {
 
-VoteGrid::VoteGrid(const Eigen::AlignedBox2d& box, double margin, double cell) {
+VoteGrid::VoteGrid(const Eigen::AlignedBox2d& box, double margin, double cell, double max_cells) {
   if (box.isEmpty()) return;
   const Eigen::Vector2d span = box.sizes() + Eigen::Vector2d::Constant(2.0 * margin);
-  cell = std::max(cell, std::sqrt(span.x() * span.y() / kMaxCells));
+  cell = std::max(cell, std::sqrt(span.x() * span.y() / max_cells));
   cell_ = cell;
   origin_ = box.min() - Eigen::Vector2d::Constant(margin + 2.0 * cell);
   width_ = static_cast<int>(std::ceil(span.x() / cell)) + 5;

@@ -12,8 +12,8 @@ class VoteGrid {
  public:
   /// Covers `box` widened by `margin` [m] on every side, in cells of `cell`
   /// [m]. The cell grows when the box is wide (a candidate plane may be a
-  /// whole wall): the grid never holds more than kMaxCells, whatever the input.
-  VoteGrid(const Eigen::AlignedBox2d& box, double margin, double cell);
+  /// whole wall): the grid never holds more than `max_cells`, whatever the input.
+  VoteGrid(const Eigen::AlignedBox2d& box, double margin, double cell, double max_cells = 4.0e6);
 
   double cell() const { return cell_; }
   void clear();
@@ -29,7 +29,6 @@ class VoteGrid {
   float& at(int x, int y) { return votes_[index(x, y)]; }
   float at(int x, int y) const { return votes_[index(x, y)]; }
 
-  static constexpr double kMaxCells = 4.0e6;
   double cell_ = 0.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   int width_ = 0, height_ = 0;
