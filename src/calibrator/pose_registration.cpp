@@ -27,18 +27,55 @@ std::vector<FrameCenters> observations(const std::vector<FrameReport>& frames,
   return out;
 }
 
-PoseReport accumulate(const PoseGrouper::Pose& pose, const std::vector<FrameCenters>& streams,
+/// Frames of the stream `s` that hold centres.
+int observed(const std::vector<FrameCenters>& streams, std::size_t s) {
+  int count = 0;
+  for (const FrameCenters& f : streams) count += f[s] ? 1 : 0;
+  return count;
+}
+
+/// A stream with centres in far fewer frames than the other: a ring-free
+/// lidar gives one set per window of sweeps (20 frames), at the window's last
+/// frame. Its few sets cannot make or confirm a static stretch of their own,
+/// so the poses are grouped on the other stream and each sparse set joins
+/// the pose whose frames it lies among (or, past the last, the nearest one).
+std::vector<bool> sparse_streams(const std::vector<FrameCenters>& streams) {
+  std::vector<bool> sparse(2, false);
+  const int lidar = observed(streams, 0), camera = observed(streams, 1);
+  sparse[0] = lidar > 0 && 4 * lidar < camera;
+  sparse[1] = camera > 0 && 4 * camera < lidar;
+  return sparse;
+}
+
+/// The pose nearest in time to frame f (the one containing it, if any).
+std::size_t pose_of_frame(const std::vector<PoseGrouper::Pose>& poses, int f) {
+  std::size_t best = 0;
+  int best_gap = std::numeric_limits<int>::max();
+  for (std::size_t p = 0; p < poses.size(); ++p) {
+    const int gap = f < poses[p].first ? poses[p].first - f : f > poses[p].last ? f - poses[p].last : 0;
+    if (gap < best_gap) best_gap = gap, best = p;
+  }
+  return best;
+}
+
+PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t index,
+                      const std::vector<FrameCenters>& streams, const std::vector<bool>& sparse,
                       const CenterAccumulator::Params& params) {
+  const PoseGrouper::Pose& pose = poses[index];
   PoseReport report;
   report.first_frame = pose.first;
   report.last_frame = pose.last;
   report.frames = pose.frames;
   report.rms = std::numeric_limits<double>::quiet_NaN();
   CenterAccumulator lidar(params), camera(params);
-  for (int f : pose.frames) {
-    if (streams[f][0]) lidar.add(*streams[f][0]);
-    if (streams[f][1]) camera.add(*streams[f][1]);
-  }
+  CenterAccumulator* accumulators[2] = {&lidar, &camera};
+  for (int f : pose.frames)
+    for (std::size_t s = 0; s < 2; ++s)
+      if (!sparse[s] && streams[f][s]) accumulators[s]->add(*streams[f][s]);
+  for (std::size_t s = 0; s < 2; ++s)
+    if (sparse[s])
+      for (int f = 0; f < static_cast<int>(streams.size()); ++f)
+        if (streams[f][s] && pose_of_frame(poses, f) == index) accumulators[s]->add(*streams[f][s]);
   report.lidar_centroids = lidar.estimate();
   report.camera_centroids = camera.estimate();
   if (!report.lidar_centroids.found)
@@ -128,11 +165,16 @@ std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation&
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
                     const Calibrator::Params& params, Calibrator::Result& result) {
   const std::vector<FrameCenters> streams = observations(frames, late_lidar);
-  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(streams);
+  const std::vector<bool> sparse = sparse_streams(streams);
+  std::vector<FrameCenters> dense = streams;
+  for (FrameCenters& f : dense)
+    for (std::size_t s = 0; s < 2; ++s)
+      if (sparse[s]) f[s].reset();
+  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(dense);
   result.moving_frames = grouping.moving;
   result.notes.insert(result.notes.end(), grouping.notes.begin(), grouping.notes.end());
-  for (const PoseGrouper::Pose& pose : grouping.poses)
-    result.poses.push_back(accumulate(pose, streams, params.accumulator));
+  for (std::size_t p = 0; p < grouping.poses.size(); ++p)
+    result.poses.push_back(accumulate(grouping.poses, p, streams, sparse, params.accumulator));
   return fit_poses(result, params);
 }
 
