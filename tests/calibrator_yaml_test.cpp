@@ -74,6 +74,9 @@ TEST(CalibratorParamsYaml, RejectsTyposBadValuesAndInvalidParams) {
   expect_file_error(path, "lidar_plane:\n  max_angle: -1\n", "lidar_plane.max_angle");
   expect_file_error(path, "preset: fancy\n", "fancy");
   expect_file_error(path, "[1, 2]\n", "mapping");
+  // A key that is itself a mapping (found by fuzzing: it threw yaml-cpp's bad conversion).
+  expect_file_error(path, "registrar:\n  {}:\n  {}\n", "a key of registrar. is not a name");
+  expect_file_error(path, "{}: 1\n", "a key of the file is not a name");
 }
 
 TEST(CalibrationResultYaml, HoldsTheTransformAndItsInverse) {

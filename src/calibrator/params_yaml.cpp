@@ -66,6 +66,9 @@ class Reader {
 
   void reject_unknown() const {
     for (const auto& entry : node_) {
+      // A key may itself be a mapping or a list ({}: 1): no field is named so.
+      if (!entry.first.IsScalar())
+        throw FileError(path_, "a key of " + (prefix_.empty() ? std::string("the file") : prefix_) + " is not a name");
       const std::string key = entry.first.as<std::string>();
       if (!known_.count(key)) throw FileError(path_, "unknown key " + prefix_ + key);
     }
