@@ -4,9 +4,11 @@
 // first 1, 2, 3 and 5 poses; with the uncertainty's coverage of the true
 // error and any moving frame that entered a pose (private).
 
+#include <l2s/calibrator.hpp>
 #include <l2s/sim/suite.hpp>
 
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace l2s::sim::detail {
@@ -16,6 +18,11 @@ constexpr int kMovingFrames = 2;  ///< frames between two poses
 constexpr int kMostPoses = 5;
 /// Frames of the recording with the first `poses` poses.
 constexpr int pose_recording_frames(int poses) { return poses * kPoseFrames + (poses - 1) * kMovingFrames; }
+
+/// A cell's row from its calibration: success, reason, frames, verdict, and
+/// the errors against T_true when a transform was found.
+SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const Eigen::Isometry3d& T_true,
+                  double wall_s, const std::string& scene);
 
 /// Runs a group of the poses experiment (as run_suite_group).
 std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells, int threads,

@@ -39,16 +39,9 @@ int covered_dofs(const Calibrator::Result& result, const Eigen::Isometry3d& T_tr
   return covered;
 }
 
-SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const MultiPoseSimulator& sim,
-                  int asked, double seconds) {
-  SuiteRow row = SuiteRow::of(cell);
-  row.frames = result.frames_added;
-  row.success = result.found;
-  row.reason = result.reason;
-  row.lidar_frames = result.lidar_frames;
-  row.camera_frames = result.camera_frames;
-  row.wall_s = seconds;
-  if (result.checked) row.verdict = verdict_name(result.quality.verdict);
+SuiteRow evaluate_poses(const SuiteCell& cell, const Calibrator::Result& result, const MultiPoseSimulator& sim,
+                        int asked, double seconds) {
+  SuiteRow row = evaluate(cell, result, sim.T_lidar_camera(), seconds, "");
   const std::vector<int> moving = sim.moving_frames();
   int entered = 0;
   for (const PoseReport& pose : result.poses)
@@ -56,13 +49,9 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const
   std::ostringstream scene;
   scene << "poses=" << asked << " drawn=" << std::min<std::size_t>(asked, sim.poses().size())
         << " found=" << result.poses.size() << " used=" << result.poses_used() << " moving_in_poses=" << entered;
-  if (result.found) {
-    const PoseError error = pose_error(result.T_lidar_camera, sim.T_lidar_camera());
-    row.e_t = error.translation;
-    row.e_r = error.rotation;
+  if (result.found)
     scene << " covered=" << covered_dofs(result, sim.T_lidar_camera())
           << " valid=" << result.joint.uncertainty.valid;
-  }
   row.scene = scene.str();
   return row;
 }
@@ -124,7 +113,7 @@ std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector
         const auto evaluated = Clock::now();
         const Calibrator::Result result = calibrators[c].result();
         seconds[c] += since(evaluated);
-        per_cell[c].push_back(evaluate(cells[c], result, *sim, p, seconds[c]));
+        per_cell[c].push_back(evaluate_poses(cells[c], result, *sim, p, seconds[c]));
       }
     }
     if (on_frame) on_frame();

@@ -20,16 +20,11 @@
 #include <optional>
 
 namespace l2s::sim {
-namespace {
 
-using Clock = std::chrono::steady_clock;
+namespace detail {
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
-                  const Eigen::Isometry3d& T_true, double wall_s, const std::string& scene) {
+SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const Eigen::Isometry3d& T_true,
+                  double wall_s, const std::string& scene) {
   SuiteRow row = SuiteRow::of(cell);
   row.scene = scene;
   if (result.checked) row.verdict = verdict_name(result.quality.verdict);
@@ -46,6 +41,19 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result,
   }
   return row;
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::evaluate;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 
 // A cell in progress: its calibrator and the time spent on it so far.
 struct Run {
