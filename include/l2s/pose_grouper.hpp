@@ -2,9 +2,11 @@
 // Groups a time-ordered stream of board observations into board poses: the
 // board stands still within a pose and moves between poses (issue 9, "Several
 // poses"). Works on any number of observation streams per frame (lidar,
-// stereo camera, later a mono camera or a second lidar): a frame belongs to
-// the current pose when every stream that saw the board in it agrees, within
-// a tolerance, with the pose's first view from that stream.
+// stereo camera, a mono camera or a second lidar): a frame belongs to the
+// current pose when a stream that saw the board in it agrees, within a
+// tolerance, with the pose's first view from that stream (a move of the board
+// moves it for every sensor; one sensor alone disagreeing made a wrong
+// detection). Within a pose, each stream's views are then sorted by consensus.
 
 #include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
@@ -41,6 +43,11 @@ class L2S_EXPORT PoseGrouper {
     int last = 0;                ///< index of its last frame (inclusive)
     std::vector<int> frames;     ///< frames that agree with the pose (within first..last)
     std::vector<int> outliers;   ///< frames within first..last that disagree (a bad detection, not a move)
+    /// Per stream: frames of `frames` whose view from that stream lies
+    /// elsewhere than the stream's consensus over the pose (a wrong detection
+    /// of that sensor while another sensor agrees with the pose); their
+    /// views of that stream are not to be used.
+    std::vector<std::vector<int>> stream_outliers;
   };
 
   struct Result {
@@ -58,7 +65,8 @@ class L2S_EXPORT PoseGrouper {
 
   /// Groups `frames` (time order; every frame has the same number of streams,
   /// else InputError). Never throws on bad data: NaN centres count as not found.
-  Result group(const std::vector<FrameCenters>& frames) const;
+  /// `stream_names` name the streams in the notes ("lidar", "camera"; default "stream k").
+  Result group(const std::vector<FrameCenters>& frames, const std::vector<std::string>& stream_names = {}) const;
 
  private:
   Params params_;

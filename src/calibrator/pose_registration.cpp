@@ -7,6 +7,7 @@
 
 #include "calibrator/pose_registration.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -69,9 +70,14 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   report.rms = std::numeric_limits<double>::quiet_NaN();
   CenterAccumulator lidar(params), camera(params);
   CenterAccumulator* accumulators[2] = {&lidar, &camera};
+  const auto wrong = [&](std::size_t s, int f) {
+    if (s >= pose.stream_outliers.size()) return false;
+    const std::vector<int>& bad = pose.stream_outliers[s];
+    return std::find(bad.begin(), bad.end(), f) != bad.end();
+  };
   for (int f : pose.frames)
     for (std::size_t s = 0; s < 2; ++s)
-      if (!sparse[s] && streams[f][s]) accumulators[s]->add(*streams[f][s]);
+      if (!sparse[s] && streams[f][s] && !wrong(s, f)) accumulators[s]->add(*streams[f][s]);
   for (std::size_t s = 0; s < 2; ++s)
     if (sparse[s])
       for (int f = 0; f < static_cast<int>(streams.size()); ++f)
@@ -170,7 +176,7 @@ bool register_poses(const std::vector<FrameReport>& frames, const std::optional<
   for (FrameCenters& f : dense)
     for (std::size_t s = 0; s < 2; ++s)
       if (sparse[s]) f[s].reset();
-  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(dense);
+  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(dense, {"lidar", "camera"});
   result.moving_frames = grouping.moving;
   result.notes.insert(result.notes.end(), grouping.notes.begin(), grouping.notes.end());
   for (std::size_t p = 0; p < grouping.poses.size(); ++p)

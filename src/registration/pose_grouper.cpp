@@ -8,6 +8,9 @@
 //    that agree, the two are one pose and the frames between are outliers.
 // Stretches long enough are poses; the frames of the others were taken while
 // the board moved. A recording that is one short stretch is still one pose.
+// 3. Consensus: within a pose, each stream keeps the views that agree with
+//    most of its others; a sensor that found a wrong board in some frames
+//    (while another sensor saw the board stay) loses those views only.
 
 #include <l2s/pose_grouper.hpp>
 
@@ -35,15 +38,42 @@ bool finite_enough(const std::optional<HoleCenters>& c) {
   return finite >= 2;
 }
 
-/// Every stream seen in both agrees, and at least one is seen in both.
+/// Does `frame` show the board where `anchor` does? Yes when a stream seen in
+/// both agrees. A stream that disagrees while another agrees made a bad
+/// detection (a wrong plane, a mislabelled set): a move of the board moves
+/// it for every sensor. Sorting out which views of a pose to use is left to
+/// consensus_outliers(), which sees all of them.
 bool agrees(const FrameCenters& anchor, const FrameCenters& frame, double tolerance) {
-  int common = 0;
-  for (std::size_t s = 0; s < frame.size(); ++s) {
-    if (!finite_enough(anchor[s]) || !finite_enough(frame[s])) continue;
-    if (!(pattern_distance(*anchor[s], *frame[s]) <= tolerance)) return false;
-    ++common;
+  for (std::size_t s = 0; s < frame.size(); ++s)
+    if (finite_enough(anchor[s]) && finite_enough(frame[s]) &&
+        pattern_distance(*anchor[s], *frame[s]) <= tolerance)
+      return true;
+  return false;
+}
+
+/// Per stream, the frames of a pose whose view disagrees with the stream's
+/// consensus: the view that most others agree with (the earliest on a tie)
+/// and those agreeing with it are kept. The consensus, not the pose's first
+/// view, decides, so a bad detection that happens to come first does not
+/// turn all the good ones into outliers.
+std::vector<std::vector<int>> consensus_outliers(const std::vector<FrameCenters>& frames,
+                                                 const std::vector<int>& pose_frames, double tolerance) {
+  const std::size_t streams = frames.empty() ? 0 : frames.front().size();
+  std::vector<std::vector<int>> out(streams);
+  for (std::size_t s = 0; s < streams; ++s) {
+    std::vector<int> seen;
+    for (int f : pose_frames)
+      if (finite_enough(frames[f][s])) seen.push_back(f);
+    const auto near = [&](int a, int b) { return pattern_distance(*frames[a][s], *frames[b][s]) <= tolerance; };
+    int best = -1, best_count = -1;
+    for (int a : seen) {
+      const auto count = std::count_if(seen.begin(), seen.end(), [&](int b) { return near(a, b); });
+      if (count > best_count) best = a, best_count = static_cast<int>(count);
+    }
+    for (int f : seen)
+      if (!near(best, f)) out[s].push_back(f);
   }
-  return common > 0;
+  return out;
 }
 
 std::vector<Stretch> stretches(const std::vector<FrameCenters>& frames, double tolerance,
@@ -97,6 +127,37 @@ std::string frame_range(const std::vector<int>& frames) {
   return s.str();
 }
 
+/// A stretch long enough to be a pose, with its notes: frames that disagree
+/// with it, and per stream the views of the board elsewhere.
+PoseGrouper::Pose make_pose(const Stretch& s, const std::vector<FrameCenters>& frames, double tolerance,
+                            const std::vector<std::string>& stream_names, std::size_t index,
+                            std::vector<std::string>& notes) {
+  using Pose = PoseGrouper::Pose;
+  Pose p;
+  p.frames = s.frames;
+  p.outliers = s.outliers;
+  std::sort(p.outliers.begin(), p.outliers.end());
+  p.first = std::min(p.frames.front(), p.outliers.empty() ? p.frames.front() : p.outliers.front());
+  p.last = std::max(p.frames.back(), p.outliers.empty() ? p.frames.back() : p.outliers.back());
+  if (!p.outliers.empty()) {
+    std::ostringstream note;
+    note << "pose " << index << ": " << p.outliers.size() << " frame(s) disagree with the pose and are not used (first "
+         << p.outliers.front() << ")";
+    notes.push_back(note.str());
+  }
+  p.stream_outliers = consensus_outliers(frames, p.frames, tolerance);
+  for (std::size_t k = 0; k < p.stream_outliers.size(); ++k) {
+    const std::vector<int>& bad = p.stream_outliers[k];
+    if (bad.empty()) continue;
+    std::ostringstream note;
+    note << "pose " << index << ": the " << (k < stream_names.size() ? stream_names[k] : "stream " + std::to_string(k))
+         << " saw the board elsewhere in " << bad.size() << " frame(s) (first " << bad.front()
+         << "; a wrong detection, not used)";
+    notes.push_back(note.str());
+  }
+  return p;
+}
+
 }  // namespace
 
 double pattern_distance(const HoleCenters& a, const HoleCenters& b) {
@@ -119,7 +180,8 @@ void PoseGrouper::Params::validate() const {
 
 PoseGrouper::PoseGrouper(Params params) : params_(params) { params_.validate(); }
 
-PoseGrouper::Result PoseGrouper::group(const std::vector<FrameCenters>& frames) const {
+PoseGrouper::Result PoseGrouper::group(const std::vector<FrameCenters>& frames,
+                                       const std::vector<std::string>& stream_names) const {
   for (const FrameCenters& frame : frames)
     if (frame.size() != frames.front().size())
       throw InputError("frames", "every frame needs the same number of observation streams");
@@ -154,19 +216,7 @@ PoseGrouper::Result PoseGrouper::group(const std::vector<FrameCenters>& frames) 
       continue;
     }
     flush_moving();
-    Pose p;
-    p.frames = s.frames;
-    p.outliers = s.outliers;
-    std::sort(p.outliers.begin(), p.outliers.end());
-    p.first = std::min(p.frames.front(), p.outliers.empty() ? p.frames.front() : p.outliers.front());
-    p.last = std::max(p.frames.back(), p.outliers.empty() ? p.frames.back() : p.outliers.back());
-    if (!p.outliers.empty()) {
-      std::ostringstream note;
-      note << "pose " << result.poses.size() << ": " << p.outliers.size()
-           << " frame(s) disagree with the pose and are not used (first " << p.outliers.front() << ")";
-      result.notes.push_back(note.str());
-    }
-    result.poses.push_back(std::move(p));
+    result.poses.push_back(make_pose(s, frames, params_.tolerance, stream_names, result.poses.size(), result.notes));
   }
   flush_moving();
   std::sort(result.moving.begin(), result.moving.end());
