@@ -63,6 +63,11 @@ class L2S_EXPORT BoardPoseRefiner {
     double edge_fraction = 0.0;  ///< share of the rim samples searched when the sample set was last chosen that found a strong edge (last round)
     double last_step_px = 0.0;   ///< [px] largest image motion of a used sample in the last round
     double edge_strength = 0.0;  ///< [gray levels / px] the weakest gradient accepted as a rim (min_edge_strength, or the lowered one when the retry converged)
+    /// Share of samples on circles of 1.35 hole radii (the board's face
+    /// around each hole) that find an edge of that strength at the final
+    /// pose: texture, not rims. A true board's face is much smoother than its
+    /// rims are sharp; a patch of patterned wall taken for the board is not.
+    double face_edge_fraction = 0.0;
   };
 
   // `Stage(Params = {})` does not compile with GCC while Params has default

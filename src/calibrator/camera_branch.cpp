@@ -90,6 +90,7 @@ class CameraHypothesisTester {
       attempt.refined = BoardPoseRefiner(f_.params.board_refiner)
                             .refine(f_.left, f_.right, f_.cameras, f_.target, attempt.T_camera_board);
       hypothesis.evidence.rim_support = attempt.refined->edge_fraction;
+      hypothesis.evidence.rim_background = attempt.refined->face_edge_fraction;
     }
     // The first hypothesis is what `l2s detect` shows when none is verified:
     // with its refinement, which is what rejected it.

@@ -116,9 +116,9 @@ void describe_hypotheses(std::string& out, const std::vector<BoardHypothesis>& h
   append(out, "  verify           %zu hypothesis(es) tried\n", hypotheses.size());
   append(out,
          "                   [%s: hole_margin %.3f m, min_hole_open %.2f, min_outline_open %.2f, "
-         "min_samples %d, confident_score %.2f, max_hypotheses %d]\n",
-         field, p.hole_margin, p.min_hole_open, p.min_outline_open, p.min_samples, p.confident_score,
-         p.max_hypotheses);
+         "min_rim_support %.2f, min_rim_excess %.2f, min_samples %d, confident_score %.2f, max_hypotheses %d]\n",
+         field, p.hole_margin, p.min_hole_open, p.min_outline_open, p.min_rim_support, p.min_rim_excess,
+         p.min_samples, p.confident_score, p.max_hypotheses);
   for (const BoardHypothesis& h : hypotheses) {
     const BoardEvidence& e = h.evidence;
     append(out, "    plane #%-2d (prior %.2f): %s%s: %s\n", h.candidate, h.prior,

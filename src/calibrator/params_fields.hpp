@@ -85,6 +85,7 @@ void visit(V& v, BoardVerifier::Params& p) {
   v.field("min_hole_open", p.min_hole_open);
   v.field("min_outline_open", p.min_outline_open);
   v.field("min_rim_support", p.min_rim_support);
+  v.field("min_rim_excess", p.min_rim_excess);
   v.field("confident_score", p.confident_score);
   v.field("max_hypotheses", p.max_hypotheses);
 }

@@ -563,6 +563,56 @@ double edge_strength(double rim_contrast, double gradient_noise, const Params& p
   return std::min(params.min_edge_strength, std::max(noise_floor, params.rim_contrast_fraction * rim_contrast));
 }
 
+/// Share of the samples on circles of 1.35 hole radii around the holes, on
+/// the board's face, that find an edge as strong as a rim within the final
+/// search range at pose T. A board's face between its rims is smooth (or has
+/// weak grain), so a true fit finds far fewer edges there than on its rims;
+/// a patch of brick or tile wall taken for the board has edges everywhere,
+/// as many there as on the "rims" the fit put on it.
+double face_edge_fraction(const Params& params, const Target& target, const std::vector<View>& views,
+                          const Eigen::Isometry3d& T) {
+  Target wider = target;
+  wider.hole_radius *= 1.35;
+  wider.board_thickness = 0.0;
+  Rims control = rims_of(wider, params.samples_per_rim);
+  for (std::size_t k = control.points.size(); k-- > 0;)  // one circle per hole suffices (no back rim)
+    if (k % (2 * params.samples_per_rim) >= static_cast<std::size_t>(params.samples_per_rim)) {
+      control.points.erase(control.points.begin() + static_cast<std::ptrdiff_t>(k));
+      control.tangents.erase(control.tangents.begin() + static_cast<std::ptrdiff_t>(k));
+      control.hole.erase(control.hole.begin() + static_cast<std::ptrdiff_t>(k));
+    }
+  EdgeSearch search(params, control, views);
+  std::vector<Sample> samples;
+  const int searched = search.search(T, params.final_search_range_px, false, samples);
+  return searched > 0 ? static_cast<double>(samples.size()) / searched : 0.0;
+}
+
+/// The rounds with min_edge_strength, and when they fail, once more with the
+/// threshold lowered to the rims' own contrast (edge_strength()).
+BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& views, const Rims& rims,
+                               const Eigen::Isometry3d& T_camera_board, const cv::Mat& gray_left,
+                               const cv::Mat& gray_right) {
+  BoardPoseRefiner::Result result;
+  result.T_camera_board = T_camera_board;
+  result.edge_strength = params.min_edge_strength;
+  Alignment(params, rims, views).run(T_camera_board, result);
+  result.converged = result.reason.empty();
+  if (result.converged) return result;
+  // A weaker threshold only when the ordinary one failed: on a textured
+  // board (wood grain) a lower one lets the grain beside the rims win the
+  // search, and a refinement that converged at 6 would end ~7 mm off.
+  Params weaker = params;
+  weaker.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params),
+                                           gradient_noise(gray_left, gray_right), params);
+  if (!(weaker.min_edge_strength < params.min_edge_strength)) return result;
+  BoardPoseRefiner::Result retry = result;
+  retry.reason.clear();
+  retry.edge_strength = weaker.min_edge_strength;
+  Alignment(weaker, rims, views).run(T_camera_board, retry);
+  retry.converged = retry.reason.empty();
+  return retry.converged ? retry : result;
+}
+
 }  // namespace
 
 void BoardPoseRefiner::Params::validate() const {
@@ -612,23 +662,11 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
     result.reason = "the board is behind a camera";
     return result;
   }
-  result.edge_strength = params_.min_edge_strength;
-  Alignment(params_, rims, views).run(T_camera_board, result);
-  result.converged = result.reason.empty();
-  if (result.converged) return result;
-  // A weaker threshold only when the ordinary one failed: on a textured
-  // board (wood grain) a lower one lets the grain beside the rims win the
-  // search, and a refinement that converged at 6 would end ~7 mm off.
-  Params weaker = params_;
-  weaker.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params_),
-                                           gradient_noise(gray_left, gray_right), params_);
-  if (!(weaker.min_edge_strength < params_.min_edge_strength)) return result;
-  Result retry = result;
-  retry.reason.clear();
-  retry.edge_strength = weaker.min_edge_strength;
-  Alignment(weaker, rims, views).run(T_camera_board, retry);
-  retry.converged = retry.reason.empty();
-  return retry.converged ? retry : result;
+  result = align(params_, views, rims, T_camera_board, gray_left, gray_right);
+  Params used = params_;
+  used.min_edge_strength = result.edge_strength;
+  result.face_edge_fraction = face_edge_fraction(used, target, views, result.T_camera_board);
+  return result;
 }
 
 }  // namespace l2s

@@ -29,6 +29,7 @@ void BoardVerifier::Params::validate() const {
     throw ParamError("min_outline_open", "must be in [0, 1]");
   if (!(confident_score >= 0.0 && confident_score <= 1.0)) throw ParamError("confident_score", "must be in [0, 1]");
   if (!(min_rim_support >= 0.0 && min_rim_support <= 1.0)) throw ParamError("min_rim_support", "must be in [0, 1]");
+  if (!(min_rim_excess >= 0.0 && min_rim_excess <= 1.0)) throw ParamError("min_rim_excess", "must be in [0, 1]");
   if (max_hypotheses < 1) throw ParamError("max_hypotheses", "must be >= 1");
 }
 
@@ -77,6 +78,17 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
     verdict.reason = reason.str();
     return verdict;
   }
+  if (std::isfinite(e.rim_support) && std::isfinite(e.rim_background) &&
+      e.rim_support - e.rim_background < params_.min_rim_excess) {
+    std::ostringstream reason;
+    reason << "the rims are no sharper than the surface around them: "
+           << static_cast<int>(std::lround(100.0 * e.rim_support)) << "% of the rim samples confirmed, "
+           << static_cast<int>(std::lround(100.0 * e.rim_background))
+           << "% beside the rims on the face (a patterned wall, not the board; needs "
+           << params_.min_rim_excess * 100.0 << " points more on the rims)";
+    verdict.reason = reason.str();
+    return verdict;
+  }
   const double holes = open_sum / 4.0;
   const double fit = 1.0 / (1.0 + std::pow(e.fit_rms / e.fit_scale, 2));
   const double rims = std::isfinite(e.rim_support) ? e.rim_support : 1.0;
@@ -87,6 +99,7 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
           << outline << (outline_samples >= params_.min_samples ? "" : " (no evidence)") << ", rim fit rms "
           << e.fit_rms * 1e3 << " mm";
   if (std::isfinite(e.rim_support)) summary << ", rims confirmed " << e.rim_support;
+  if (std::isfinite(e.rim_background)) summary << " (face beside them " << e.rim_background << ")";
   summary << ": score " << verdict.score;
   verdict.reason = summary.str();
   return verdict;

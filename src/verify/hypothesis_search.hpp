@@ -18,6 +18,22 @@
 
 namespace l2s::detail {
 
+/// A plane larger than the board (a last resort: a board close before a wall
+/// merges with it) has no outline or isolation to speak for it, only its
+/// holes. Its rims can be found in wall texture (on 60 random scenes every
+/// such plane kept without a hole seen through was a patch of brick wall,
+/// metres from the board), so it is the board only when a hole shows what
+/// lies behind it.
+inline BoardVerifier::Verdict judge_last_resort(const BoardEvidence& e, const BoardVerifier::Params& params,
+                                                BoardVerifier::Verdict verdict) {
+  for (int h = 0; h < 4; ++h)
+    if (e.hole_open[h] + e.hole_blocked[h] >= params.min_samples) return verdict;
+  verdict.verified = false;
+  verdict.score = 0.0;
+  verdict.reason = "a plane larger than the board, and no hole shows what lies behind it (" + verdict.reason + ")";
+  return verdict;
+}
+
 /// `try_one(BoardHypothesis&)` -> std::optional<Outcome>: the branch's result
 /// when four holes were found (with hypothesis.evidence filled), otherwise
 /// nullopt with hypothesis.stage and .reason set.
@@ -35,7 +51,9 @@ std::optional<Outcome> search_hypotheses(const PlaneSegmenter::Result& planes, c
     hypothesis.prior = planes.candidates[hypothesis.candidate].prior;
     std::optional<Outcome> outcome = try_one(hypothesis);
     if (outcome) {
-      const BoardVerifier::Verdict verdict = verifier.judge(hypothesis.evidence);
+      BoardVerifier::Verdict verdict = verifier.judge(hypothesis.evidence);
+      if (verdict.verified && planes.candidates[hypothesis.candidate].oversized)
+        verdict = judge_last_resort(hypothesis.evidence, verifier.params(), std::move(verdict));
       hypothesis.verified = verdict.verified;
       hypothesis.score = verdict.score;
       hypothesis.reason = verdict.reason;
