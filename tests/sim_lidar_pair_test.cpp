@@ -68,6 +68,12 @@ TEST(LidarPairSimulator, WritesADatasetThatPassesTheContract) {
 TEST(LidarPairSimulator, Lidar2ThatCannotSeeTheBoardIsAnError) {
   LidarPairConfig c = config(1, 1, 1, "avia");
   c.lidar2_setting = SensorSetting{0.0, 0.0, 0.0, M_PI, 0.0, 0.0};  // looking backwards
+  // A small grid: a search in which nothing passes tries every pose of it.
+  PlacementSearch grid;
+  grid.distances = {3.2};
+  grid.lateral = {-0.15};
+  grid.heights = {-0.1};  // the first lidar's pose of setting 1
+  c.base.placement_search = grid;
   EXPECT_THROW(LidarPairSimulator{c}, Error);
   c.base.strict_placement = false;  // lenient: a warning instead
   const LidarPairSimulator lenient(c);

@@ -38,8 +38,10 @@ struct L2S_SIM_EXPORT LidarPairConfig {
 class L2S_SIM_EXPORT LidarPairSimulator {
  public:
   /// Throws ParamError on a bad config; Error when no board pose passes the
-  /// placement check for the first lidar, or lidar2 does not see every pose
-  /// (from its given pose, or from any of the poses drawn for it).
+  /// placement check for both lidars (lidar2 at its given pose, or at any of
+  /// the mounts drawn for it); with a given pose and strict_placement off, a
+  /// warning and the first lidar's poses instead. Fewer poses than asked for
+  /// give a warning.
   explicit LidarPairSimulator(LidarPairConfig config);
   ~LidarPairSimulator();
   LidarPairSimulator(LidarPairSimulator&&) noexcept;
