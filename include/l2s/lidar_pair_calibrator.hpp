@@ -4,7 +4,11 @@
 // with its own detector (ring lidars sweep by sweep, ring-free ones
 // accumulated over a window of sweeps), and the two centre streams go through
 // the same pose grouping, per-pose accumulation and joint registration as the
-// stereo Calibrator's, giving T_lidar_lidar2 (p_lidar = T * p_lidar2).
+// stereo Calibrator's, giving T_lidar_lidar2 (p_lidar = T * p_lidar2). Both
+// sensors being lidars, each also fits the board plane precisely; the centre
+// fit is then refined with the two lidars' board normals and offsets of every
+// pose (the centres of a ring lidar are biased per pose by where its rings
+// cross the holes, which leaves roll and pitch weakest).
 //
 // Thread safety: as Calibrator (one thread at a time per instance; separate
 // instances share nothing).
@@ -67,8 +71,12 @@ class L2S_EXPORT LidarPairCalibrator {
     std::vector<LidarPairFrameReport> frames;  ///< per-frame diagnostics, in order
     std::vector<LidarPairPoseReport> poses;    ///< board poses found in the frames
     std::vector<int> moving_frames;            ///< frames with centres taken while the board moved
-    Registrar::Result registration;            ///< residuals of the fit (rms per hole over the used poses)
-    JointRegistrar::Result joint;              ///< uncertainty, leave-one-pose-out, suggestion
+    Registrar::Result registration;  ///< residuals of the centres under T_lidar_lidar2 (rms per hole over the used poses)
+    /// The joint fit of the centres alone, before the board planes refine it:
+    /// its uncertainty, leave-one-pose-out shifts and suggestion describe
+    /// that fit (an upper bound: the planes pin roll, pitch and the
+    /// translation along the board normals far better).
+    JointRegistrar::Result joint;
     std::vector<std::string> notes;            ///< what the calibrator decided on its own
     Check check;                               ///< the sanity check (failed when not found)
     double lidar_ms = 0.0;   ///< [ms] total lidar branch time

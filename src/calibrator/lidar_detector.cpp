@@ -34,11 +34,11 @@ BranchReport LidarDetector::detect(const LidarCloud& sweep, bool ring_free, Lida
   return report;
 }
 
-std::optional<BranchReport> LidarDetector::partial_window() const {
+std::optional<BranchReport> LidarDetector::partial_window(LidarInspection* trace) const {
   if (window_.empty()) return std::nullopt;
   std::vector<const LidarCloud*> window;
   for (const LidarCloud& cloud : window_) window.push_back(&cloud);
-  return run_ring_free_branch(accumulate_ring_free(window, *params_), *target_, *params_);
+  return run_ring_free_branch(accumulate_ring_free(window, *params_), *target_, *params_, trace);
 }
 
 }  // namespace l2s::detail

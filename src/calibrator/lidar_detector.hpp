@@ -26,7 +26,8 @@ class LidarDetector {
 
   /// A ring-free window still short of ring_free_frames, detected as it
   /// stands (its sweeps are data too); nothing is changed, more may follow.
-  std::optional<BranchReport> partial_window() const;
+  /// `trace` as for detect().
+  std::optional<BranchReport> partial_window(LidarInspection* trace = nullptr) const;
 
   /// Forgets the window being accumulated.
   void reset() { window_.clear(); }

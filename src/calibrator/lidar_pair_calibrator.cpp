@@ -5,10 +5,16 @@
 
 #include <l2s/lidar_pair_calibrator.hpp>
 
+#include "calibrator/board_plane_refinement.hpp"
 #include "calibrator/lidar_detector.hpp"
 #include "calibrator/pose_registration.hpp"
 
+#include <l2s/frame_inspector.hpp>
+#include <l2s/metrics.hpp>
+
+#include <algorithm>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <future>
 #include <sstream>
@@ -60,6 +66,39 @@ LidarPairCalibrator::Check check_result(const LidarPairCalibrator::Result& resul
   return check;
 }
 
+/// Frame f's detections: each lidar's centres and board plane.
+struct Observations {
+  std::vector<FrameCenters> centres;
+  std::vector<std::array<std::optional<Plane>, 2>> planes;
+};
+
+std::optional<Plane> board_plane(const BranchReport& report, const LidarInspection& trace) {
+  if (!report.found || !trace.plane || trace.candidate < 0) return std::nullopt;
+  return trace.plane->candidates[static_cast<std::size_t>(trace.candidate)].plane;
+}
+
+/// Stream s's planes of pose p: those of its frames; for a stream with none
+/// there (a ring-free window closing elsewhere), those of frames in no pose
+/// whose nearest pose is p.
+std::vector<Plane> pose_planes(const Observations& obs, const std::vector<LidarPairPoseReport>& poses, std::size_t p,
+                               int s) {
+  std::vector<Plane> out;
+  for (int f : poses[p].frames)
+    if (obs.planes[f][s]) out.push_back(*obs.planes[f][s]);
+  if (!out.empty()) return out;
+  for (int f = 0; f < static_cast<int>(obs.planes.size()); ++f) {
+    if (!obs.planes[f][s]) continue;
+    std::size_t nearest = 0;
+    int best = std::numeric_limits<int>::max();
+    for (std::size_t q = 0; q < poses.size(); ++q) {
+      const int gap = std::max({0, poses[q].first_frame - f, f - poses[q].last_frame});
+      if (gap < best) best = gap, nearest = q;
+    }
+    if (nearest == p) out.push_back(*obs.planes[f][s]);
+  }
+  return out;
+}
+
 }  // namespace
 
 struct LidarPairCalibrator::Impl {
@@ -68,30 +107,36 @@ struct LidarPairCalibrator::Impl {
   detail::LidarDetector lidar{target, params};
   detail::LidarDetector lidar2{target, params};
   std::vector<LidarPairFrameReport> frames;
+  std::vector<std::array<std::optional<Plane>, 2>> planes;  // per frame and lidar, when it found the board
 
   Impl(Target t, Params p) : target(t), params(std::move(p)) {}
 
-  /// Frame f's centres per lidar; a ring-free window detected as it stands
+  /// Every frame's detections; a ring-free window detected as it stands
   /// counts with the last frame.
-  std::vector<FrameCenters> streams() const {
-    std::vector<FrameCenters> out;
+  Observations observations() const {
+    Observations out;
+    out.planes = planes;
     for (const LidarPairFrameReport& f : frames) {
       FrameCenters centres(2);
       if (f.lidar.found) centres[0] = f.lidar.centers;
       if (f.lidar2.found) centres[1] = f.lidar2.centers;
-      out.push_back(std::move(centres));
+      out.centres.push_back(std::move(centres));
     }
     const detail::LidarDetector* detectors[2] = {&lidar, &lidar2};
-    for (int s = 0; s < 2 && !out.empty(); ++s)
-      if (const auto partial = detectors[s]->partial_window(); partial && partial->found && !out.back()[s])
-        out.back()[s] = partial->centers;
+    for (int s = 0; s < 2 && !frames.empty(); ++s) {
+      LidarInspection trace;
+      const auto partial = detectors[s]->partial_window(&trace);
+      if (!partial || !partial->found || out.centres.back()[s]) continue;
+      out.centres.back()[s] = partial->centers;
+      out.planes.back()[s] = board_plane(*partial, trace);
+    }
     return out;
   }
 
   /// Copies the registration (stream 0: lidar, stream 1: lidar2) into `result`.
-  void registered(const std::vector<FrameCenters>& centres, Result& result) const {
+  void registered(const Observations& obs, Result& result) const {
     Calibrator::Result fit;
-    const bool found = detail::register_pose_streams(centres, {"lidar", "lidar2"}, params, fit);
+    const bool found = detail::register_pose_streams(obs.centres, {"lidar", "lidar2"}, params, fit);
     for (const PoseReport& pose : fit.poses) result.poses.push_back(pair_pose(pose));
     result.moving_frames = fit.moving_frames;
     result.notes = fit.notes;
@@ -99,7 +144,54 @@ struct LidarPairCalibrator::Impl {
     result.joint = fit.joint;
     result.found = found;
     result.reason = fit.reason;
-    if (found) result.T_lidar_lidar2 = fit.T_lidar_camera;
+    if (!found) return;
+    result.T_lidar_lidar2 = fit.T_lidar_camera;
+    refine(obs, result);
+  }
+
+  /// The centre fit refined with both lidars' board planes of the used
+  /// poses (board_plane_refinement.hpp); residuals and pose rms follow.
+  void refine(const Observations& obs, Result& result) const {
+    std::vector<detail::BoardPoseObservation> poses;
+    for (std::size_t p = 0; p < result.poses.size(); ++p) {
+      const LidarPairPoseReport& pose = result.poses[p];
+      const std::vector<Plane> planes = pose_planes(obs, result.poses, p, 0), planes2 = pose_planes(obs, result.poses, p, 1);
+      if (!pose.used || planes.empty() || planes2.empty()) continue;
+      poses.push_back({pose.lidar_centroids.centers, pose.lidar2_centroids.centers, detail::mean_plane(planes),
+                       detail::mean_plane(planes2)});
+    }
+    if (poses.empty()) return;
+    const Eigen::Isometry3d T = detail::refine_with_board_planes(result.T_lidar_lidar2, poses);
+    const PoseError moved = pose_error(T, result.T_lidar_lidar2);
+    std::ostringstream note;
+    note.precision(3);
+    note << "refined with the board planes of " << poses.size() << " pose(s): moved " << moved.translation * 1e3
+         << " mm, " << moved.rotation * 180.0 / M_PI << " deg from the fit of the centres";
+    result.notes.push_back(note.str());
+    result.T_lidar_lidar2 = T;
+    residuals_under(T, result);
+  }
+
+  /// Pose rms and per-hole residuals of the centres under T.
+  static void residuals_under(const Eigen::Isometry3d& T, Result& result) {
+    std::array<double, 4> sum{};
+    double total = 0.0;
+    int used = 0;
+    for (LidarPairPoseReport& pose : result.poses) {
+      if (!pose.lidar_centroids.found || !pose.lidar2_centroids.found) continue;
+      double pose_sum = 0.0;
+      for (int h = 0; h < 4; ++h) {
+        const double r2 = (pose.lidar_centroids.centers[h] - T * pose.lidar2_centroids.centers[h]).squaredNorm();
+        pose_sum += r2;
+        if (pose.used) sum[h] += r2;
+      }
+      pose.rms = std::sqrt(pose_sum / 4.0);
+      if (pose.used) total += pose_sum, ++used;
+    }
+    if (used == 0) return;
+    for (int h = 0; h < 4; ++h) result.registration.residuals[h] = std::sqrt(sum[h] / used);
+    result.registration.rms = std::sqrt(total / (4.0 * used));
+    result.registration.T_lidar_camera = T;
   }
 };
 
@@ -119,16 +211,18 @@ LidarPairFrameReport LidarPairCalibrator::add(const LidarCloud& lidar, const Lid
   Impl& impl = *impl_;
   LidarPairFrameReport report;
   report.id = id.empty() ? std::to_string(impl.frames.size()) : id;
-  const auto second = [&] { return impl.lidar2.detect(lidar2, detail::is_ring_free(lidar2)); };
+  LidarInspection trace, trace2;  // for the board planes (the branch keeps its stages there either way)
+  const auto second = [&] { return impl.lidar2.detect(lidar2, detail::is_ring_free(lidar2), &trace2); };
   if (impl.params.parallel_branches) {
     // The detectors share only const inputs.
     auto other = std::async(std::launch::async, second);
-    report.lidar = impl.lidar.detect(lidar, detail::is_ring_free(lidar));
+    report.lidar = impl.lidar.detect(lidar, detail::is_ring_free(lidar), &trace);
     report.lidar2 = other.get();
   } else {
-    report.lidar = impl.lidar.detect(lidar, detail::is_ring_free(lidar));
+    report.lidar = impl.lidar.detect(lidar, detail::is_ring_free(lidar), &trace);
     report.lidar2 = second();
   }
+  impl.planes.push_back({board_plane(report.lidar, trace), board_plane(report.lidar2, trace2)});
   report.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   impl.frames.push_back(report);
@@ -144,8 +238,8 @@ LidarPairCalibrator::Result LidarPairCalibrator::result() const {
     result.lidar_ms += f.lidar.milliseconds;
     result.lidar2_ms += f.lidar2.milliseconds;
   }
-  const std::vector<FrameCenters> centres = impl.streams();
-  for (const FrameCenters& f : centres) {
+  const Observations obs = impl.observations();
+  for (const FrameCenters& f : obs.centres) {
     result.lidar_frames += f[0] ? 1 : 0;
     result.lidar2_frames += f[1] ? 1 : 0;
   }
@@ -158,7 +252,7 @@ LidarPairCalibrator::Result LidarPairCalibrator::result() const {
            << result.lidar2_frames << " of " << result.frames_added << " frames (need " << needed << ")";
     result.reason = reason.str();
   } else {
-    impl.registered(centres, result);
+    impl.registered(obs, result);
   }
   result.check = check_result(result);
   return result;
@@ -166,6 +260,7 @@ LidarPairCalibrator::Result LidarPairCalibrator::result() const {
 
 void LidarPairCalibrator::reset() {
   impl_->frames.clear();
+  impl_->planes.clear();
   impl_->lidar.reset();
   impl_->lidar2.reset();
 }
