@@ -26,6 +26,7 @@ namespace {
 constexpr std::uint64_t kMountStream = 0x2B1DULL;  // lidar2's pose draws
 constexpr std::uint64_t kSweepStream = 0x5EE9ULL;  // per segment and lidar
 constexpr int kMountDraws = 8;
+constexpr int kChecked = 960;  // best-rated board poses checked per slot and mount
 
 /// A mount of lidar2 relative to the first as on a vehicle or a sensor
 /// bar: 0.3..1 m away, mostly sideways or fore-aft, yaw up to 20 deg, pitch
@@ -52,6 +53,8 @@ SensorSetting setting_of(const Eigen::Isometry3d& T_cambody_lidar) {
 SimulationConfig with_lidar2(SimulationConfig base, const LidarModel& model, const SensorSetting& setting) {
   PlacementSearch search = base.placement_search.value_or(PlacementSearch{});
   search.also = {MountedLidar{model, setting}};
+  // A mount that cannot see a slot is redrawn rather than searched to the end.
+  if (search.max_checked == 0) search.max_checked = kChecked;
   base.placement_search = search;
   return base;
 }

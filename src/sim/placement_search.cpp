@@ -207,7 +207,8 @@ PlacementResult find_placement(const Target& target, const SensorSetting& settin
   result.score = -1e18;
   int best = order.front();
   bool found = false;
-  for (std::size_t begin = 0; begin < order.size() && !found; begin += kBatch) {
+  const std::size_t checked = search.max_checked > 0 ? std::min<std::size_t>(search.max_checked, order.size()) : order.size();
+  for (std::size_t begin = 0; begin < checked && !found; begin += kBatch) {
     const int count = static_cast<int>(std::min<std::size_t>(kBatch, order.size() - begin));
     std::vector<double> scores(count, -1e18);
     std::vector<char> passed(count, 0);

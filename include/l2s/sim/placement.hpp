@@ -83,6 +83,9 @@ struct PlacementSearch {
   /// Further lidars at their own poses that must pass too (a lidar-lidar
   /// rig's second lidar); their reports follow those of `lidars`.
   std::vector<MountedLidar> also;
+  /// Best-rated poses checked exactly before the search gives up, 0: all of
+  /// the grid (a grid with no passing pose costs a check of every pose).
+  int max_checked = 0;
 };
 
 struct PlacementResult {
