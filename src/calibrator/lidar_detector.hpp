@@ -29,6 +29,9 @@ class LidarDetector {
   /// `trace` as for detect().
   std::optional<BranchReport> partial_window(LidarInspection* trace = nullptr) const;
 
+  /// Ring-free sweeps waiting in the window.
+  int window_size() const { return static_cast<int>(window_.size()); }
+
   /// Forgets the window being accumulated.
   void reset() { window_.clear(); }
 

@@ -9,6 +9,8 @@
 #include "calibrator/lidar_detector.hpp"
 #include "calibrator/pose_registration.hpp"
 
+#include <l2s/pose_grouper.hpp>
+
 #include <l2s/frame_inspector.hpp>
 #include <l2s/metrics.hpp>
 
@@ -109,7 +111,38 @@ struct LidarPairCalibrator::Impl {
   std::vector<LidarPairFrameReport> frames;
   std::vector<std::array<std::optional<Plane>, 2>> planes;  // per frame and lidar, when it found the board
 
+  std::optional<HoleCenters> last_centres[2];  // each lidar's latest detection, to see the board move
+
   Impl(Target t, Params p) : target(t), params(std::move(p)) {}
+
+  detail::LidarDetector& detector(int s) { return s == 0 ? lidar : lidar2; }
+
+  /// A ring lidar's detection: when the board moved since its last one
+  /// (PoseGrouper's tolerance), the other lidar's ring-free window holds
+  /// sweeps of the pose left behind, so it is closed. Without this, windows
+  /// would straddle the moves of a multi-pose recording.
+  void follow_board(int s, const BranchReport& report) {
+    if (!report.found) return;
+    const bool moved = last_centres[s] && pattern_distance(*last_centres[s], report.centers) > params.poses.tolerance;
+    last_centres[s] = report.centers;
+    if (moved) close_window(1 - s);
+  }
+
+  /// Detects the window of lidar s as it stands, at its last sweep (the
+  /// previous frame), when it holds at least half a window; then empties it.
+  void close_window(int s) {
+    detail::LidarDetector& d = detector(s);
+    LidarInspection trace;
+    std::optional<BranchReport> partial;
+    if (2 * d.window_size() >= params.ring_free_frames && !frames.empty()) partial = d.partial_window(&trace);
+    d.reset();
+    if (!partial || !partial->found) return;
+    BranchReport& previous = s == 0 ? frames.back().lidar : frames.back().lidar2;
+    partial->milliseconds += previous.milliseconds;
+    partial->note = "ring-free window closed early: the other lidar saw the board move";
+    previous = *partial;
+    planes.back()[s] = board_plane(*partial, trace);
+  }
 
   /// Every frame's detections; a ring-free window detected as it stands
   /// counts with the last frame.
@@ -211,18 +244,29 @@ LidarPairFrameReport LidarPairCalibrator::add(const LidarCloud& lidar, const Lid
   Impl& impl = *impl_;
   LidarPairFrameReport report;
   report.id = id.empty() ? std::to_string(impl.frames.size()) : id;
-  LidarInspection trace, trace2;  // for the board planes (the branch keeps its stages there either way)
-  const auto second = [&] { return impl.lidar2.detect(lidar2, detail::is_ring_free(lidar2), &trace2); };
-  if (impl.params.parallel_branches) {
-    // The detectors share only const inputs.
-    auto other = std::async(std::launch::async, second);
-    report.lidar = impl.lidar.detect(lidar, detail::is_ring_free(lidar), &trace);
-    report.lidar2 = other.get();
+  const LidarCloud* sweeps[2] = {&lidar, &lidar2};
+  const bool ring_free[2] = {detail::is_ring_free(lidar), detail::is_ring_free(lidar2)};
+  LidarInspection traces[2];  // for the board planes (the branch keeps its stages there either way)
+  BranchReport found[2];
+  const auto detect = [&](int s) { return impl.detector(s).detect(*sweeps[s], ring_free[s], &traces[s]); };
+  if (ring_free[0] != ring_free[1]) {
+    // The ring lidar first: a board move it sees closes the other's window
+    // before this sweep (of the board on its way) joins it.
+    const int ring = ring_free[0] ? 1 : 0;
+    found[ring] = detect(ring);
+    impl.follow_board(ring, found[ring]);
+    found[1 - ring] = detect(1 - ring);
+  } else if (impl.params.parallel_branches) {
+    auto other = std::async(std::launch::async, detect, 1);  // the detectors share only const inputs
+    found[0] = detect(0);
+    found[1] = other.get();
   } else {
-    report.lidar = impl.lidar.detect(lidar, detail::is_ring_free(lidar), &trace);
-    report.lidar2 = second();
+    found[0] = detect(0);
+    found[1] = detect(1);
   }
-  impl.planes.push_back({board_plane(report.lidar, trace), board_plane(report.lidar2, trace2)});
+  report.lidar = found[0];
+  report.lidar2 = found[1];
+  impl.planes.push_back({board_plane(report.lidar, traces[0]), board_plane(report.lidar2, traces[1])});
   report.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   impl.frames.push_back(report);
@@ -263,6 +307,8 @@ void LidarPairCalibrator::reset() {
   impl_->planes.clear();
   impl_->lidar.reset();
   impl_->lidar2.reset();
+  impl_->last_centres[0].reset();
+  impl_->last_centres[1].reset();
 }
 
 int LidarPairCalibrator::Result::poses_used() const {
