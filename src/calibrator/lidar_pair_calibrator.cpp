@@ -9,15 +9,14 @@
 #include "calibrator/lidar_detector.hpp"
 #include "calibrator/pose_registration.hpp"
 
-#include <l2s/pose_grouper.hpp>
-
 #include <l2s/frame_inspector.hpp>
 #include <l2s/metrics.hpp>
+#include <l2s/pose_grouper.hpp>
 
 #include <algorithm>
 #include <chrono>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <future>
 #include <sstream>
 
@@ -80,8 +79,8 @@ std::optional<Plane> board_plane(const BranchReport& report, const LidarInspecti
 }
 
 /// Stream s's planes of pose p: those of its frames; for a stream with none
-/// there (a ring-free window closing elsewhere), those of frames in no pose
-/// whose nearest pose is p.
+/// there (a ring-free window that closed on a moving frame), those of the
+/// frames nearer to p than to any other pose.
 std::vector<Plane> pose_planes(const Observations& obs, const std::vector<LidarPairPoseReport>& poses, std::size_t p,
                                int s) {
   std::vector<Plane> out;
