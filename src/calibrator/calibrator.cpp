@@ -2,6 +2,7 @@
 
 #include "calibrator/branches.hpp"
 #include "calibrator/check_keeper.hpp"
+#include "calibrator/lidar_detector.hpp"
 #include "calibrator/pose_registration.hpp"
 #include "calibrator/result_check.hpp"
 #include "detail/board_frame.hpp"
@@ -51,47 +52,12 @@ struct Calibrator::Impl {
   std::vector<FrameReport> frames;
   SceneObserver observer;
   detail::CheckFrameKeeper check_frames;
-  std::vector<LidarCloud> ring_free_window;  // ring-free sweeps waiting for a detection (pass-through applied)
+  detail::LidarDetector lidar{target, params};  // its ring-free window, when the lidar has no rings
   // Ring-free lidars: the camera's view of the board from a frame of the
   // window being accumulated. The window's detection comes with its last
   // sweep, whose images may not show the board; the board is static over the
   // window, so any of its frames with the board serves the check.
   std::shared_ptr<const CameraObservation> window_camera;
-
-  // The lidar branch of one sweep: at once for a ring lidar; for a ring-free
-  // one, when ring_free_frames sweeps of the static board are together.
-  // `trace` receives the stages of the detection, when one ran (for a
-  // ring-free lidar: of the accumulated window).
-  BranchReport lidar_branch(const LidarCloud& sweep, bool ring_free, LidarInspection* trace) {
-    if (!ring_free)
-      return timed([&] { return detail::run_lidar_branch(sweep, target, params, trace); });
-    const auto start = std::chrono::steady_clock::now();
-    ring_free_window.push_back(detail::accumulate_ring_free({&sweep}, params));
-    BranchReport report;
-    const auto count = static_cast<int>(ring_free_window.size());
-    if (count < params.ring_free_frames) {
-      report.failed_stage = "accumulating";
-      report.reason = "ring-free sweep " + std::to_string(count) + " of " + std::to_string(params.ring_free_frames) +
-                      " accumulated";
-    } else {
-      std::vector<const LidarCloud*> window;
-      for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
-      report = detail::run_ring_free_branch(detail::accumulate_ring_free(window, params), target, params, trace);
-      ring_free_window.clear();
-    }
-    report.milliseconds = milliseconds_since(start);
-    return report;
-  }
-
-  // A ring-free window still short of ring_free_frames when the result is
-  // asked for: its sweeps are data too (a recording of 1 s from a 2 s window),
-  // so it is detected as it stands. Nothing is changed: more sweeps may follow.
-  std::optional<BranchReport> partial_ring_free_window() const {
-    if (ring_free_window.empty()) return std::nullopt;
-    std::vector<const LidarCloud*> window;
-    for (const LidarCloud& cloud : ring_free_window) window.push_back(&cloud);
-    return detail::run_ring_free_branch(detail::accumulate_ring_free(window, params), target, params);
-  }
 
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
@@ -133,7 +99,7 @@ struct Calibrator::Impl {
       return result;
     }
     std::optional<HoleCenters> late_lidar;
-    if (const auto partial = partial_ring_free_window(); partial && partial->found) {
+    if (const auto partial = lidar.partial_window(); partial && partial->found) {
       late_lidar = partial->centers;
       ++result.lidar_frames;
     }
@@ -186,7 +152,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   LidarInspection lidar_trace;
   CameraInspection camera_trace;
   const bool ring_free = detail::is_ring_free(lidar);
-  const auto lidar_branch = [&] { return impl.lidar_branch(lidar, ring_free, &lidar_trace); };
+  const auto lidar_branch = [&] { return impl.lidar.detect(lidar, ring_free, &lidar_trace); };
   const auto camera_branch = [&] {
     return timed([&] {
       return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &camera_trace);
@@ -234,7 +200,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera,
   FrameReport report;
   LidarInspection lidar_trace;
   const bool ring_free = detail::is_ring_free(lidar);
-  report.lidar = impl_->lidar_branch(lidar, ring_free, &lidar_trace);
+  report.lidar = impl_->lidar.detect(lidar, ring_free, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
   return impl_->record(
@@ -259,7 +225,7 @@ Calibrator::Result Calibrator::result() const {
 void Calibrator::reset() {
   impl_->frames.clear();
   impl_->check_frames.reset();
-  impl_->ring_free_window.clear();
+  impl_->lidar.reset();
   impl_->window_camera.reset();
 }
 

@@ -61,7 +61,7 @@ std::size_t pose_of_frame(const std::vector<PoseGrouper::Pose>& poses, int f) {
 
 PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t index,
                       const std::vector<FrameCenters>& streams, const std::vector<bool>& sparse,
-                      const CenterAccumulator::Params& params) {
+                      const CenterAccumulator::Params& params, const StreamNames& names) {
   const PoseGrouper::Pose& pose = poses[index];
   PoseReport report;
   report.first_frame = pose.first;
@@ -85,9 +85,9 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   report.lidar_centroids = lidar.estimate();
   report.camera_centroids = camera.estimate();
   if (!report.lidar_centroids.found)
-    report.reason = "lidar centres do not cluster: " + report.lidar_centroids.reason;
+    report.reason = names[0] + " centres do not cluster: " + report.lidar_centroids.reason;
   else if (!report.camera_centroids.found)
-    report.reason = "camera centres do not cluster: " + report.camera_centroids.reason;
+    report.reason = names[1] + " centres do not cluster: " + report.camera_centroids.reason;
   return report;
 }
 
@@ -170,7 +170,11 @@ std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation&
 
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
                     const Calibrator::Params& params, Calibrator::Result& result) {
-  const std::vector<FrameCenters> streams = observations(frames, late_lidar);
+  return register_pose_streams(observations(frames, late_lidar), {"lidar", "camera"}, params, result);
+}
+
+bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
+                           const Calibrator::Params& params, Calibrator::Result& result) {
   const std::vector<bool> sparse = sparse_streams(streams);
   std::vector<FrameCenters> dense = streams;
   for (FrameCenters& f : dense)
@@ -180,7 +184,7 @@ bool register_poses(const std::vector<FrameReport>& frames, const std::optional<
   result.moving_frames = grouping.moving;
   result.notes.insert(result.notes.end(), grouping.notes.begin(), grouping.notes.end());
   for (std::size_t p = 0; p < grouping.poses.size(); ++p)
-    result.poses.push_back(accumulate(grouping.poses, p, streams, sparse, params.accumulator));
+    result.poses.push_back(accumulate(grouping.poses, p, streams, sparse, params.accumulator, names));
   return fit_poses(result, params);
 }
 

@@ -4,7 +4,9 @@
 
 #include <l2s/calibrator.hpp>
 
+#include <array>
 #include <optional>
+#include <string>
 
 namespace l2s::detail {
 
@@ -16,6 +18,16 @@ namespace l2s::detail {
 /// no transform is found.
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
                     const Calibrator::Params& params, Calibrator::Result& result);
+
+/// What the two streams are called in reasons ("lidar", "camera").
+using StreamNames = std::array<std::string, 2>;
+
+/// register_poses() on any two observation streams (frame f's centres of
+/// stream s in streams[f][s]; stream 0 is the target of the fit, stream 1 the
+/// source), e.g. two lidars. The result's lidar_* fields hold stream 0, its
+/// camera_* fields stream 1, T_lidar_camera the fitted T_stream0_stream1.
+bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
+                           const Calibrator::Params& params, Calibrator::Result& result);
 
 /// The joint fit of result.poses again with every pose's camera centres
 /// relabelled by `permutation` (the labels the scene prefers); updates the

@@ -64,6 +64,41 @@ std::string describe_mismatch(const std::set<std::string>& lidar, const std::set
   return text;
 }
 
+// A lidar-lidar dataset's stems: lidar/ and lidar2/ must list the same.
+std::set<std::string> lidar_pair_stems(const std::string& folder) {
+  const auto lidar = stems_in(folder, "lidar", ".pcd");
+  const auto lidar2 = stems_in(folder, "lidar2", ".pcd");
+  if (lidar != lidar2) {
+    std::string text;
+    std::size_t listed = 0, mismatched = 0;
+    std::set<std::string> all = lidar;
+    all.insert(lidar2.begin(), lidar2.end());
+    for (const std::string& stem : all) {
+      const char* missing = !lidar.count(stem) ? " (no lidar/" : !lidar2.count(stem) ? " (no lidar2/" : nullptr;
+      if (!missing) continue;
+      if (listed++ < kStemsListed) text += (text.empty() ? "" : ", ") + stem + missing + stem + ".pcd)";
+      ++mismatched;
+    }
+    if (mismatched > kStemsListed) text += ", and " + std::to_string(mismatched - kStemsListed) + " more";
+    throw FileError(join(folder, "lidar2"), "frame stems differ from lidar/: " + text);
+  }
+  if (lidar.empty()) throw FileError(folder, "no frames (lidar/*.pcd, lidar2/*.pcd)");
+  return lidar;
+}
+
+/// A sweep as the calibrator takes it: rings from the field, the rows of an
+/// organised cloud or the laser model; none for a ring-free scan.
+void load_sweep(const std::string& path, LidarCloud* cloud, RingSource* source,
+                std::optional<RingRecoveryReport>* recovery) {
+  PcdFile sweep = read_pcd_file(path);
+  *cloud = std::move(sweep.cloud);
+  if (cloud->has_ring()) return;
+  *recovery = sweep.height > 1 ? rings_from_rows(*cloud, sweep.height) : recover_ring_structure(*cloud);
+  *source = (*recovery)->source;
+  // A ring-free scan has no rings to give: the calibrator accumulates it instead.
+  if ((*recovery)->structure == ScanStructure::RingFree) cloud->ring.clear();
+}
+
 void check_size(const Image& image, const CameraInfo& camera, const std::string& image_path,
                 const std::string& yaml_name) {
   if (image.width == camera.width && image.height == camera.height) return;
@@ -83,12 +118,18 @@ Dataset Dataset::open(const std::string& folder) {
   const std::string info_path = join(folder, "dataset.yaml");
   dataset.has_dataset_file_ = fs::exists(info_path, error);
   const DatasetInfo info = read_dataset_info_or_default(info_path);
-  const std::string left_yaml = join(folder, "left.yaml"), right_yaml = join(folder, "right.yaml");
-  dataset.cameras_ = read_stereo_camera(left_yaml, right_yaml, info.images);
-  dataset.warnings_ = rectified_pair_warnings(dataset.cameras_, left_yaml, right_yaml);
   const std::string target_path = join(folder, "target.yaml");
   dataset.has_target_file_ = fs::exists(target_path, error);
   dataset.target_ = read_target_or_default(target_path);
+  dataset.has_lidar2_ = fs::is_directory(join(folder, "lidar2"), error);
+  if (dataset.has_lidar2_) {  // lidar-lidar: no cameras to read
+    const auto stems = lidar_pair_stems(folder);
+    dataset.stems_.assign(stems.begin(), stems.end());
+    return dataset;
+  }
+  const std::string left_yaml = join(folder, "left.yaml"), right_yaml = join(folder, "right.yaml");
+  dataset.cameras_ = read_stereo_camera(left_yaml, right_yaml, info.images);
+  dataset.warnings_ = rectified_pair_warnings(dataset.cameras_, left_yaml, right_yaml);
 
   const auto lidar = stems_in(folder, "lidar", ".pcd");
   const auto left = stems_in(folder, "left", ".png");
@@ -107,20 +148,16 @@ Frame Dataset::load(std::size_t index) const {
                                   std::to_string(stems_.size()) + " frames in " + folder_);
   Frame frame;
   frame.stem = stems_[index];
-  PcdFile sweep = read_pcd_file(lidar_path(frame.stem));
-  frame.lidar = std::move(sweep.cloud);
+  load_sweep(lidar_path(frame.stem), &frame.lidar, &frame.ring_source, &frame.ring_recovery);
+  if (has_lidar2_) {
+    load_sweep(lidar2_path(frame.stem), &frame.lidar2, &frame.lidar2_ring_source, &frame.lidar2_ring_recovery);
+    return frame;
+  }
   frame.left = read_image(left_path(frame.stem));
   frame.right = read_image(right_path(frame.stem));
   // Both YAMLs share one size (read_stereo_camera), so left and right match too.
   check_size(frame.left, cameras_.left, left_path(frame.stem), "left.yaml");
   check_size(frame.right, cameras_.right, right_path(frame.stem), "right.yaml");
-  if (!frame.lidar.has_ring()) {
-    frame.ring_recovery = sweep.height > 1 ? rings_from_rows(frame.lidar, sweep.height)
-                                           : recover_ring_structure(frame.lidar);
-    frame.ring_source = frame.ring_recovery->source;
-    // A ring-free scan has no rings to give: the calibrator accumulates it instead.
-    if (frame.ring_recovery->structure == ScanStructure::RingFree) frame.lidar.ring.clear();
-  }
   return frame;
 }
 
@@ -128,7 +165,7 @@ std::optional<Eigen::Isometry3d> Dataset::ground_truth() const {
   const std::string path = join(folder_, "ground_truth.yaml");
   std::error_code error;
   if (!fs::exists(path, error)) return std::nullopt;
-  return read_transform(path);
+  return read_transform(path, has_lidar2_ ? "T_lidar_lidar2" : "T_lidar_camera");
 }
 
 std::string Dataset::lidar_path(const std::string& stem) const {
@@ -139,6 +176,9 @@ std::string Dataset::left_path(const std::string& stem) const {
 }
 std::string Dataset::right_path(const std::string& stem) const {
   return join(folder_, "right/" + stem + ".png");
+}
+std::string Dataset::lidar2_path(const std::string& stem) const {
+  return join(folder_, "lidar2/" + stem + ".pcd");
 }
 
 }  // namespace l2s::io

@@ -58,12 +58,35 @@ void DatasetWriter::write(const Frame& frame, PcdEncoding encoding) const {
   if (frame.stem.empty() || frame.stem[0] == '.' ||
       frame.stem.find_first_of("/\\") != std::string::npos)
     throw ParamError("frame.stem", "'" + frame.stem + "' is not a plain file stem");
+  if (lidar_pair_) {
+    write_pcd(join(folder_, "lidar2/" + frame.stem + ".pcd"), frame.lidar2, encoding);
+    write_pcd(join(folder_, "lidar/" + frame.stem + ".pcd"), frame.lidar, encoding);
+    return;
+  }
   check_image(frame.left, cameras_.left, "frame.left");
   check_image(frame.right, cameras_.right, "frame.right");
   // Lidar last: a frame counts once its .pcd exists, and then its images do too.
   write_png(join(folder_, "left/" + frame.stem + ".png"), frame.left);
   write_png(join(folder_, "right/" + frame.stem + ".png"), frame.right);
   write_pcd(join(folder_, "lidar/" + frame.stem + ".pcd"), frame.lidar, encoding);
+}
+
+DatasetWriter DatasetWriter::lidar_pair(const std::string& folder, const Target& target) {
+  target.validate();
+  for (const char* sub : {"lidar", "lidar2"}) {
+    std::error_code error;
+    fs::create_directories(join(folder, sub), error);
+    if (error) throw FileError(join(folder, sub), "cannot create folder: " + error.message());
+  }
+  write_target(join(folder, "target.yaml"), target);
+  DatasetWriter writer;
+  writer.folder_ = folder;
+  writer.lidar_pair_ = true;
+  return writer;
+}
+
+void DatasetWriter::write_ground_truth_lidar2(const Eigen::Isometry3d& T_lidar_lidar2) const {
+  write_transform(join(folder_, "ground_truth.yaml"), T_lidar_lidar2, "T_lidar_lidar2");
 }
 
 void DatasetWriter::write_ground_truth(const Eigen::Isometry3d& T_lidar_camera) const {

@@ -52,6 +52,14 @@ Eigen::Isometry3d read_transform(const std::string& path, const std::string& key
   return T;
 }
 
+std::string transform_key(const std::string& path) {
+  const YAML::Node root = yaml::load_file(path);
+  if (root.IsMap())
+    for (const char* key : {"T_lidar_camera", "T_lidar_lidar2"})
+      if (yaml::has_key(root, key)) return key;
+  throw FileError(path, "holds neither T_lidar_camera nor T_lidar_lidar2");
+}
+
 void write_transform(const std::string& path, const Eigen::Isometry3d& T, const std::string& key) {
   YAML::Emitter out;
   out << YAML::BeginMap;

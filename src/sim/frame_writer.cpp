@@ -31,6 +31,7 @@ void write_frames(const io::DatasetWriter& writer, int count, int threads,
       out.lidar = std::move(simulated.lidar);
       out.left = std::move(simulated.left);
       out.right = std::move(simulated.right);
+      out.lidar2 = std::move(simulated.lidar2);
       writer.write(out);
       std::lock_guard<std::mutex> lock(mutex);
       ++done;

@@ -10,6 +10,7 @@
 
 #include "detail/atomic_file.hpp"
 #include "sim/frame_writer.hpp"
+#include "sim/pose_segments.hpp"
 #include "sim/random.hpp"
 #include "sim/scene_record.hpp"
 
@@ -19,24 +20,6 @@ namespace l2s::sim {
 namespace {
 
 constexpr std::uint64_t kSegmentStream = 0x905EULL;
-
-BoardPose between(const BoardPose& a, const BoardPose& b, double f) {
-  const auto mix = [f](double u, double v) { return u + (v - u) * f; };
-  return {mix(a.x, b.x), mix(a.y, b.y), mix(a.z, b.z), mix(a.yaw, b.yaw), mix(a.pitch, b.pitch), mix(a.roll, b.roll)};
-}
-
-std::string poses_yaml(const std::vector<PoseSegment>& segments) {
-  std::ostringstream out;
-  out.precision(9);
-  out << "# Board poses of this recording, camera body frame (scene.yaml's board_pose convention).\n"
-         "# pose: -1 marks a frame taken while the board was carried between two poses.\n"
-         "segments:\n";
-  for (const PoseSegment& s : segments)
-    out << "  - {pose: " << s.pose_index << ", first_frame: " << s.first_frame << ", frames: " << s.frames
-        << ", x: " << s.pose.x << ", y: " << s.pose.y << ", z: " << s.pose.z << ", yaw: " << s.pose.yaw
-        << ", pitch: " << s.pose.pitch << ", roll: " << s.pose.roll << "}\n";
-  return out.str();
-}
 
 }  // namespace
 
@@ -53,16 +36,16 @@ struct MultiPoseSimulator::Impl {
   std::vector<std::string> warnings;
   int frames = 0;
 
-  void add(const BoardPose& pose, int count, int pose_index) {
+  // The simulator of segment k.
+  void add(const PoseSegment& segment, std::size_t k) {
     SimulationConfig c = config.base;
-    c.board_pose = pose;
-    c.frames = count;
+    c.board_pose = segment.pose;
+    c.frames = segment.frames;
     // The first stretch keeps the config's seed; the others derive theirs.
-    if (!segments.empty()) c.seed = detail::hash_counters(config.base.seed, kSegmentStream, segments.size());
-    c.strict_placement = pose_index >= 0;  // a board on its way may leave the view
-    segments.push_back({pose, frames, count, pose_index});
+    if (k > 0) c.seed = detail::hash_counters(config.base.seed, kSegmentStream, k);
+    c.strict_placement = segment.pose_index >= 0;  // a board on its way may leave the view
     simulators.push_back(std::make_unique<DatasetSimulator>(c));
-    frames += count;
+    frames += segment.frames;
   }
 };
 
@@ -75,12 +58,8 @@ MultiPoseSimulator::MultiPoseSimulator(MultiPoseConfig config) : impl_(std::make
   if (static_cast<int>(poses.size()) < s.config.poses)
     s.warnings.push_back("only " + std::to_string(poses.size()) + " of " + std::to_string(s.config.poses) +
                          " board poses pass the placement check");
-  const int moving = s.config.moving_frames;
-  for (std::size_t p = 0; p < poses.size(); ++p) {
-    if (p > 0)
-      for (int m = 1; m <= moving; ++m) s.add(between(poses[p - 1], poses[p], m / (moving + 1.0)), 1, -1);
-    s.add(poses[p], s.config.base.frames, static_cast<int>(p));
-  }
+  s.segments = detail::plan_segments(poses, s.config.base.frames, s.config.moving_frames);
+  for (std::size_t k = 0; k < s.segments.size(); ++k) s.add(s.segments[k], k);
 }
 
 MultiPoseSimulator::~MultiPoseSimulator() = default;
@@ -100,20 +79,8 @@ SimulatedFrame MultiPoseSimulator::frame(int index) const {
 
 const std::vector<PoseSegment>& MultiPoseSimulator::segments() const { return impl_->segments; }
 
-std::vector<int> MultiPoseSimulator::moving_frames() const {
-  std::vector<int> out;
-  for (const PoseSegment& s : impl_->segments)
-    if (s.pose_index < 0)
-      for (int i = 0; i < s.frames; ++i) out.push_back(s.first_frame + i);
-  return out;
-}
-
-std::vector<BoardPose> MultiPoseSimulator::poses() const {
-  std::vector<BoardPose> out;
-  for (const PoseSegment& s : impl_->segments)
-    if (s.pose_index >= 0) out.push_back(s.pose);
-  return out;
-}
+std::vector<int> MultiPoseSimulator::moving_frames() const { return detail::moving_frames(impl_->segments); }
+std::vector<BoardPose> MultiPoseSimulator::poses() const { return detail::static_poses(impl_->segments); }
 
 Eigen::Isometry3d MultiPoseSimulator::T_lidar_camera() const { return impl_->config.base.T_lidar_camera(); }
 StereoCamera MultiPoseSimulator::cameras() const { return impl_->config.base.rig.cameras(); }
@@ -127,7 +94,7 @@ void MultiPoseSimulator::write(const std::string& folder, const ProgressCallback
   const DatasetSimulator& first = *s.simulators.front();
   detail::write_scene_record(folder + "/scene.yaml", first.config(), first.board_pose(), first.scene(),
                              first.lidar_model(), first.placement());
-  l2s::detail::write_file_atomically(folder + "/poses.yaml", poses_yaml(s.segments));
+  l2s::detail::write_file_atomically(folder + "/poses.yaml", detail::poses_yaml(s.segments));
   detail::write_frames(writer, s.frames, s.config.base.threads, [this](int i) { return frame(i); }, progress);
 }
 

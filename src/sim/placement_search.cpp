@@ -129,6 +129,37 @@ Margins estimate(const Target& target, const BoardPose& pose, const SensorSettin
   return m;
 }
 
+/// estimate() for the lidars at `setting` and each of `also` at its own.
+Margins estimate_all(const Target& target, const BoardPose& pose, const SensorSetting& setting,
+                     const std::vector<LidarModel>& lidars, const std::vector<MountedLidar>& also,
+                     const StereoRig& rig, const PlacementRequirements& req) {
+  Margins m = estimate(target, pose, setting, lidars, rig, req);
+  for (const MountedLidar& extra : also) {
+    const Margins e = estimate(target, pose, extra.setting, {extra.model}, rig, req);
+    m.second_rays = std::min(m.second_rays, e.second_rays);
+    m.rings = std::min(m.rings, e.rings);
+    m.image = std::min(m.image, e.image);
+    m.elevation = std::max(m.elevation, e.elevation);
+  }
+  return m;
+}
+
+/// check_placement for every lidar of the search; stops at the first that fails.
+std::vector<PlacementReport> check_all(const Scene& scene, const SensorSetting& setting,
+                                       const std::vector<LidarModel>& lidars, const StereoRig& rig,
+                                       const PlacementSearch& search, bool stop_at_failure) {
+  std::vector<PlacementReport> reports;
+  for (const LidarModel& lidar : lidars) {
+    reports.push_back(check_placement(scene, lidar, setting, rig, search.requirements));
+    if (stop_at_failure && !reports.back().ok) return reports;  // cheapest verdict first
+  }
+  for (const MountedLidar& extra : search.also) {
+    reports.push_back(check_placement(scene, extra.model, extra.setting, rig, search.requirements));
+    if (stop_at_failure && !reports.back().ok) return reports;
+  }
+  return reports;
+}
+
 Margins exact(const std::vector<PlacementReport>& reports, const PlacementRequirements& req) {
   Margins m{1 << 30, 1 << 30, 1e9, 0.0};
   for (const auto& r : reports) {
@@ -166,7 +197,7 @@ PlacementResult find_placement(const Target& target, const SensorSetting& settin
 
   std::vector<double> estimated(poses.size());
   detail::parallel_for(static_cast<int>(poses.size()), search.threads, [&](int i) {
-    estimated[i] = score(estimate(target, poses[i], setting, lidars, rig, req), req);
+    estimated[i] = score(estimate_all(target, poses[i], setting, lidars, search.also, rig, req), req);
   }, 256);
   std::vector<int> order(poses.size());
   std::iota(order.begin(), order.end(), 0);
@@ -176,18 +207,16 @@ PlacementResult find_placement(const Target& target, const SensorSetting& settin
   result.score = -1e18;
   int best = order.front();
   bool found = false;
-  for (std::size_t begin = 0; begin < order.size() && !found; begin += kBatch) {
+  const std::size_t checked = search.max_checked > 0 ? std::min<std::size_t>(search.max_checked, order.size()) : order.size();
+  for (std::size_t begin = 0; begin < checked && !found; begin += kBatch) {
     const int count = static_cast<int>(std::min<std::size_t>(kBatch, order.size() - begin));
     std::vector<double> scores(count, -1e18);
     std::vector<char> passed(count, 0);
     detail::parallel_for(count, search.threads, [&](int k) {
       const BoardPose& pose = poses[order[begin + k]];
       const Scene scene = make_scene(target, pose, layout);
-      std::vector<PlacementReport> reports;
-      for (const LidarModel& lidar : lidars) {
-        reports.push_back(check_placement(scene, lidar, setting, rig, req));
-        if (!reports.back().ok) return;  // cheapest verdict first: the first model fails
-      }
+      const std::vector<PlacementReport> reports = check_all(scene, setting, lidars, rig, search, true);
+      if (!reports.back().ok) return;
       passed[k] = 1;
       scores[k] = score(exact(reports, req), req);
     }, 1);
@@ -205,8 +234,7 @@ PlacementResult find_placement(const Target& target, const SensorSetting& settin
   result.pose = poses[best];
   if (!found) result.score = estimated[best];
   const Scene scene = make_scene(target, result.pose, layout);
-  for (const LidarModel& lidar : lidars)
-    result.reports.push_back(check_placement(scene, lidar, setting, rig, req));
+  result.reports = check_all(scene, setting, lidars, rig, search, false);
   return result;
 }
 

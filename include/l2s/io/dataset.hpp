@@ -28,6 +28,12 @@ struct Frame {
   std::optional<RingRecoveryReport> ring_recovery;
 
   bool rings_recovered() const { return ring_source != RingSource::Field; }
+
+  // A lidar-lidar dataset (Dataset::has_lidar2): the second lidar's sweep,
+  // its rings recovered as the first's; the images stay empty.
+  LidarCloud lidar2;
+  RingSource lidar2_ring_source = RingSource::Field;
+  std::optional<RingRecoveryReport> lidar2_ring_recovery;
 };
 
 /// Read access to a dataset folder. Opening reads the YAML files and lists the
@@ -41,6 +47,9 @@ class L2S_EXPORT Dataset {
   /// missing lidar/, left/ or right/ folder, no frames, or stems that differ
   /// between them (the message lists the first few and which files they lack).
   /// dataset.yaml (images: rectified) and target.yaml are optional (defaults).
+  /// With a `lidar2/` folder the dataset is lidar-lidar (DATASET.md): camera
+  /// YAMLs and images are neither needed nor read, and stems must match
+  /// between lidar/ and lidar2/ (else FileError naming the folder).
   /// Stems are sorted; files whose names start with '.' or have another
   /// extension are not frames.
   static Dataset open(const std::string& folder);
@@ -56,6 +65,8 @@ class L2S_EXPORT Dataset {
   const Target& target() const { return target_; }
   bool has_target_file() const { return has_target_file_; }
   const std::vector<std::string>& stems() const { return stems_; }
+  /// A lidar-lidar dataset: frames hold lidar and lidar2, no images, no cameras.
+  bool has_lidar2() const { return has_lidar2_; }
   std::size_t size() const { return stems_.size(); }
 
   /// Loads frame `index`; throws FileError when a file is unreadable or an
@@ -66,11 +77,13 @@ class L2S_EXPORT Dataset {
   Frame load(std::size_t index) const;
 
   /// ground_truth.yaml when present (synthetic data); FileError when malformed.
+  /// Its key is T_lidar_lidar2 for a lidar-lidar dataset, else T_lidar_camera.
   std::optional<Eigen::Isometry3d> ground_truth() const;
 
   std::string lidar_path(const std::string& stem) const;
   std::string left_path(const std::string& stem) const;
   std::string right_path(const std::string& stem) const;
+  std::string lidar2_path(const std::string& stem) const;
 
  private:
   std::string folder_;
@@ -78,6 +91,7 @@ class L2S_EXPORT Dataset {
   Target target_;
   bool has_target_file_ = false;
   bool has_dataset_file_ = false;
+  bool has_lidar2_ = false;
   std::vector<std::string> warnings_;
   std::vector<std::string> stems_;
 };
@@ -94,18 +108,26 @@ class L2S_EXPORT DatasetWriter {
   /// ParamError for an impossible target.
   DatasetWriter(const std::string& folder, const StereoCamera& cameras, const Target& target);
 
+  /// A lidar-lidar dataset: lidar/ and lidar2/ and target.yaml, no cameras.
+  /// Its write() takes frame.lidar and frame.lidar2 (images are ignored).
+  static DatasetWriter lidar_pair(const std::string& folder, const Target& target);
+
   /// Writes lidar/STEM.pcd, left/STEM.png, right/STEM.png (an existing frame of
   /// that stem is replaced). Throws ParamError when the stem is not a plain file
   /// name or an image size differs from its camera.
   void write(const Frame& frame, PcdEncoding encoding = PcdEncoding::Binary) const;
   /// Writes ground_truth.yaml (key T_lidar_camera).
   void write_ground_truth(const Eigen::Isometry3d& T_lidar_camera) const;
+  /// Writes ground_truth.yaml of a lidar-lidar dataset (key T_lidar_lidar2).
+  void write_ground_truth_lidar2(const Eigen::Isometry3d& T_lidar_lidar2) const;
 
   const std::string& folder() const { return folder_; }
 
  private:
+  DatasetWriter() = default;
   std::string folder_;
   StereoCamera cameras_;
+  bool lidar_pair_ = false;  // lidar/ + lidar2/, no images
 };
 
 }  // namespace l2s::io

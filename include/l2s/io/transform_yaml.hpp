@@ -18,6 +18,10 @@ namespace l2s::io {
 L2S_EXPORT Eigen::Isometry3d read_transform(const std::string& path,
                                  const std::string& key = "T_lidar_camera");
 
+/// The DATASET.md key `path` holds: T_lidar_camera, else T_lidar_lidar2
+/// (a lidar-lidar dataset or result); FileError when it holds neither.
+L2S_EXPORT std::string transform_key(const std::string& path);
+
 /// Writes a file holding only `key`, atomically, in the shortest decimal form
 /// that reads back exactly; for T_lidar_camera with the frame comment of DATASET.md.
 L2S_EXPORT void write_transform(const std::string& path, const Eigen::Isometry3d& T,

@@ -64,6 +64,12 @@ L2S_SIM_EXPORT PlacementReport check_placement(const Scene& scene, const LidarMo
                                 const SensorSetting& setting, const StereoRig& rig = {},
                                 const PlacementRequirements& requirements = {});
 
+/// A lidar at its own pose in the camera body frame.
+struct MountedLidar {
+  LidarModel model;
+  SensorSetting setting;
+};
+
 /// Grid of board poses the search tries (camera body frame).
 struct PlacementSearch {
   std::vector<double> distances{2.4, 2.6, 2.8, 3.0, 3.2, 3.4, 3.6, 3.8, 4.0, 4.2, 4.4, 4.6, 4.8, 5.0, 5.25, 5.5};  ///< [m] x
@@ -74,6 +80,12 @@ struct PlacementSearch {
   double roll = 0.05;                                                ///< [rad] small in-plane turn
   PlacementRequirements requirements;
   int threads = 0;  ///< 0 = hardware concurrency
+  /// Further lidars at their own poses that must pass too (a lidar-lidar
+  /// rig's second lidar); their reports follow those of `lidars`.
+  std::vector<MountedLidar> also;
+  /// Best-rated poses checked exactly before the search gives up, 0: all of
+  /// the grid (a grid with no passing pose costs a check of every pose).
+  int max_checked = 0;
 };
 
 struct PlacementResult {

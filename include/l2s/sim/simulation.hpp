@@ -67,6 +67,7 @@ struct SimulatedFrame {
   LidarCloud lidar;  ///< lidar frame, with intensity and ring (no ring for ring-free lidars)
   Image left;        ///< 8-bit gray (BGR for a colour appearance); raw images when rig.images() is Raw
   Image right;
+  LidarCloud lidar2; ///< lidar-lidar datasets (LidarPairSimulator): the second lidar; images empty then
 };
 
 /// Called after each frame is written: (frames done, frames total). Frames are

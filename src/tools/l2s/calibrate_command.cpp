@@ -187,6 +187,9 @@ void print_estimate(const io::Dataset& dataset, const Calibrator::Result& result
 int run_calibrate(const CalibrateOptions& options) {
   const auto dataset = open_dataset_warning(options.dataset);
   const Calibrator::Params params = params_from(options.preset, options.params_file);
+  if (dataset.has_lidar2())  // DATASET.md: lidar/ with lidar2/ is lidar-lidar
+    return calibrate_lidar_pair(dataset, {params, options.params_file.empty() ? options.preset : options.params_file,
+                                          options.output, options.frames, options.verbose});
   Calibrator calibrator(dataset.cameras(), dataset.target(), params);
 
   const std::size_t count =
@@ -228,7 +231,7 @@ int run_calibrate(const CalibrateOptions& options) {
 }  // namespace
 
 void add_calibrate_command(CLI::App& app, Runner& runner) {
-  auto* command = app.add_subcommand("calibrate", "Calibrate a dataset folder: T_lidar_camera");
+  auto* command = app.add_subcommand("calibrate", "Calibrate a dataset folder: T_lidar_camera (T_lidar_lidar2 for a lidar-lidar dataset)");
   auto options = std::make_shared<CalibrateOptions>();
   command->add_option("dataset", options->dataset, "dataset folder (DATASET.md)")->required();
   command->add_option("-o,--output", options->output, "result YAML (default DATASET/calibration.yaml)");

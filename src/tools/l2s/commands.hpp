@@ -24,6 +24,17 @@ void add_suite_command(CLI::App& app, Runner& runner);
 void add_detect_command(CLI::App& app, Runner& runner);
 void add_check_command(CLI::App& app, Runner& runner);
 
+/// What `l2s calibrate` passes on for a lidar-lidar dataset.
+struct LidarPairRun {
+  Calibrator::Params params;  ///< its lidar side serves both lidars
+  std::string preset;         ///< preset name or params file, for the result file
+  std::string output;         ///< result YAML; empty: DATASET/calibration.yaml
+  int frames = 0;             ///< use only the first N frames (0: all)
+  bool verbose = false;       ///< print why each frame was not used
+};
+/// `l2s calibrate` on a lidar-lidar dataset (calibrate_lidar_pair.cpp); the exit code.
+int calibrate_lidar_pair(const io::Dataset& dataset, const LidarPairRun& run);
+
 // Inputs several sub-commands share (command_inputs.cpp).
 /// Opens a dataset and prints its warnings to stderr.
 io::Dataset open_dataset_warning(const std::string& folder);

@@ -49,11 +49,14 @@ int print_info(const std::string& folder, bool load_all) {
   const auto& left = dataset.cameras().left;
   const Target& target = dataset.target();
   std::printf("dataset   %s\n", folder.c_str());
-  std::printf("images    %s%s\n", io::to_string(dataset.cameras().images).c_str(),
-              dataset.has_dataset_file() ? " (dataset.yaml)" : " (default: no dataset.yaml)");
-  std::printf("cameras   %dx%d px, fx %.1f px, fy %.1f px, c (%.1f, %.1f), baseline %.4f m\n",
-              left.width, left.height, left.fx(), left.fy(), left.cx(), left.cy(),
-              dataset.cameras().baseline());
+  if (dataset.has_lidar2()) {
+    std::printf("sensors   lidar/ and lidar2/: a lidar-lidar dataset (T_lidar_lidar2), no cameras\n");
+  } else {
+    std::printf("images    %s%s\n", io::to_string(dataset.cameras().images).c_str(),
+                dataset.has_dataset_file() ? " (dataset.yaml)" : " (default: no dataset.yaml)");
+    std::printf("cameras   %dx%d px, fx %.1f px, fy %.1f px, c (%.1f, %.1f), baseline %.4f m\n", left.width,
+                left.height, left.fx(), left.fy(), left.cx(), left.cy(), dataset.cameras().baseline());
+  }
   std::printf("target    %.3f x %.3f x %.3f m board, holes r %.3f m on %.3f x %.3f m%s\n",
               target.board_width, target.board_height, target.board_thickness, target.hole_radius,
               target.hole_spacing_x, target.hole_spacing_y,
@@ -67,16 +70,21 @@ int print_info(const std::string& folder, bool load_all) {
     const auto frame = dataset.load(i);
     const auto finite = std::count_if(frame.lidar.points.begin(), frame.lidar.points.end(),
                                       [](const Eigen::Vector3d& p) { return p.allFinite(); });
-    std::printf("  %s: %zu lidar points (%ld finite), images %s\n", frame.stem.c_str(),
-                frame.lidar.size(), static_cast<long>(finite),
-                frame.left.channels == 1 ? "gray" : "colour");
+    if (dataset.has_lidar2())
+      std::printf("  %s: %zu lidar points (%ld finite), lidar2 %zu points, rings %s\n", frame.stem.c_str(),
+                  frame.lidar.size(), static_cast<long>(finite), frame.lidar2.size(),
+                  frame.lidar2.has_ring() ? io::to_string(frame.lidar2_ring_source).c_str() : "none (ring-free)");
+    else
+      std::printf("  %s: %zu lidar points (%ld finite), images %s\n", frame.stem.c_str(), frame.lidar.size(),
+                  static_cast<long>(finite), frame.left.channels == 1 ? "gray" : "colour");
     print_rings(frame);
   }
   if (const auto truth = dataset.ground_truth()) {
     const Eigen::Vector3d t = truth->translation();
     const Eigen::Vector3d rpy = roll_pitch_yaw(truth->rotation());
-    std::printf("truth     T_lidar_camera t = (%.4f, %.4f, %.4f) m, roll/pitch/yaw = (%.4f, %.4f, %.4f) rad\n",
-                t.x(), t.y(), t.z(), rpy[0], rpy[1], rpy[2]);
+    std::printf("truth     %s t = (%.4f, %.4f, %.4f) m, roll/pitch/yaw = (%.4f, %.4f, %.4f) rad\n",
+                dataset.has_lidar2() ? "T_lidar_lidar2" : "T_lidar_camera", t.x(), t.y(), t.z(), rpy[0], rpy[1],
+                rpy[2]);
   }
   return 0;
 }

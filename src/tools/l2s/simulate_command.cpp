@@ -6,6 +6,7 @@
 
 #include <l2s/error.hpp>
 #include <l2s/io/target_yaml.hpp>
+#include <l2s/sim/lidar_pair.hpp>
 #include <l2s/sim/multi_pose.hpp>
 #include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/scene_yaml.hpp>
@@ -54,6 +55,9 @@ struct SimulateOptions {
   // --- Several board poses (issue 9) ---
   std::optional<int> poses;  // absent: one pose, the single-pose dataset as always
   int moving_frames = 2;
+
+  // --- Lidar to lidar (issue 9) ---
+  std::string lidar2;  // a second lidar model: a lidar-lidar dataset, no images
 };
 
 /// Applies the rig and look options that were given on the command line.
@@ -97,9 +101,9 @@ void prepare_output(const std::string& folder, bool overwrite) {
   if (!fs::is_directory(folder)) throw FileError(folder, "exists and is not a folder");
   if (fs::is_empty(folder)) return;
   if (!overwrite) throw FileError(folder, "folder is not empty (use --overwrite to replace the dataset)");
-  for (const char* sub : {"lidar", "left", "right"}) fs::remove_all(fs::path(folder) / sub);
-  for (const char* file :
-       {"dataset.yaml", "left.yaml", "right.yaml", "target.yaml", "ground_truth.yaml", "scene.yaml", "poses.yaml"})
+  for (const char* sub : {"lidar", "left", "right", "lidar2"}) fs::remove_all(fs::path(folder) / sub);
+  for (const char* file : {"dataset.yaml", "left.yaml", "right.yaml", "target.yaml", "ground_truth.yaml", "scene.yaml",
+                           "poses.yaml", "lidar2.yaml"})
     fs::remove(fs::path(folder) / file);
 }
 
@@ -145,6 +149,31 @@ int write_multi_pose(const sim::SimulationConfig& config, const SimulateOptions&
   return 0;
 }
 
+/// Writes a lidar-lidar dataset (--lidar2) and prints where lidar2 stands.
+int write_lidar_pair(const sim::SimulationConfig& config, const SimulateOptions& options) {
+  sim::LidarPairConfig pair;
+  pair.base = config;
+  pair.lidar2 = options.lidar2;
+  pair.poses = options.poses.value_or(1);
+  pair.moving_frames = options.moving_frames;
+  const sim::LidarPairSimulator simulator(pair);
+  prepare_output(options.out_dir, options.overwrite);
+  for (const auto& warning : simulator.warnings()) std::cerr << "l2s: warning: " << warning << "\n";
+  ProgressBar progress("simulate", static_cast<std::size_t>(simulator.frames()));
+  simulator.write(options.out_dir, [&](int done, int) { progress.update(done); });
+  progress.finish();
+  std::printf("wrote %s: lidar-lidar, %d frames, %zu board poses of %d frames, %zu moving frames, %s -> %s, K = %g, "
+              "seed %llu\n",
+              options.out_dir.c_str(), simulator.frames(), simulator.poses().size(), config.frames,
+              simulator.moving_frames().size(), config.lidar.c_str(), options.lidar2.c_str(), config.noise_factor,
+              static_cast<unsigned long long>(config.seed));
+  const Eigen::Isometry3d T = simulator.T_lidar_lidar2();
+  const Eigen::Vector3d t = T.translation();
+  std::printf("ground truth T_lidar_lidar2 translation (%.4f, %.4f, %.4f) m, rotation %.2f deg\n", t.x(), t.y(),
+              t.z(), Eigen::AngleAxisd(T.rotation()).angle() * 180.0 / M_PI);
+  return 0;
+}
+
 int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   const auto given = [&](const char* name) { return command.count(name) > 0; };
   if (options.random_scene) {
@@ -172,6 +201,7 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   apply_camera_options(options, command, &config);
   if (options.lidar_quirks) config.lidar_quirks = sim::LidarQuirks::all(config.lidar_quirks.table_seed);
 
+  if (!options.lidar2.empty()) return write_lidar_pair(config, options);
   if (options.poses) return write_multi_pose(config, options);
   return write_dataset(sim::DatasetSimulator(config), options);
 }
@@ -211,6 +241,11 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
   command->add_option("--moving-frames", options->moving_frames,
                       "with --poses: frames between two poses with the board on its way (default 2)")
       ->check(CLI::Range(0, 10));
+  command->add_option("--lidar2", options->lidar2,
+                      "a second lidar model: writes a lidar-lidar dataset (lidar/, lidar2/, no images) with "
+                      "lidar2 at a seeded random pose near the first; works with --poses")
+      ->check(CLI::IsMember(sim::LidarModel::names()))
+      ->excludes("--random-scene");
   command->add_flag("--lidar-quirks", options->lidar_quirks,
                     "simulate a real lidar: per-laser calibration table, beam divergence and mixed returns");
   command->callback([&runner, options, command] {

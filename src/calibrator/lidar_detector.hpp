@@ -1,0 +1,44 @@
+#pragma once
+// One lidar's board detector over a stream of sweeps (private): a ring lidar
+// is detected sweep by sweep; a ring-free one (non-repetitive scan) is
+// accumulated over params.ring_free_frames sweeps of the static board and
+// detected once per window. Shared by every facade with a lidar in it (the
+// stereo Calibrator, the LidarPairCalibrator), so each lidar of a rig keeps
+// its own window.
+
+#include "calibrator/branches.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace l2s::detail {
+
+class LidarDetector {
+ public:
+  /// `target` and `params` must outlive the detector (the facade owns them).
+  LidarDetector(const Target& target, const Calibrator::Params& params) : target_(&target), params_(&params) {}
+
+  /// The lidar branch of one sweep: at once for a ring lidar; for a
+  /// ring-free one (`ring_free`, from is_ring_free), when ring_free_frames
+  /// sweeps are together; until then the report's stage is "accumulating".
+  /// `trace` receives the detection's stages, when one ran. Timed.
+  BranchReport detect(const LidarCloud& sweep, bool ring_free, LidarInspection* trace = nullptr);
+
+  /// A ring-free window still short of ring_free_frames, detected as it
+  /// stands (its sweeps are data too); nothing is changed, more may follow.
+  /// `trace` as for detect().
+  std::optional<BranchReport> partial_window(LidarInspection* trace = nullptr) const;
+
+  /// Ring-free sweeps waiting in the window.
+  int window_size() const { return static_cast<int>(window_.size()); }
+
+  /// Forgets the window being accumulated.
+  void reset() { window_.clear(); }
+
+ private:
+  const Target* target_;
+  const Calibrator::Params* params_;
+  std::vector<LidarCloud> window_;  // ring-free sweeps waiting for a detection (pass-through applied)
+};
+
+}  // namespace l2s::detail
