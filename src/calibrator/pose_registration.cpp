@@ -180,7 +180,7 @@ bool register_pose_streams(const std::vector<FrameCenters>& streams, const Strea
   for (FrameCenters& f : dense)
     for (std::size_t s = 0; s < 2; ++s)
       if (sparse[s]) f[s].reset();
-  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(dense, {"lidar", "camera"});
+  const PoseGrouper::Result grouping = PoseGrouper(params.poses).group(dense, {names[0], names[1]});
   result.moving_frames = grouping.moving;
   result.notes.insert(result.notes.end(), grouping.notes.begin(), grouping.notes.end());
   for (std::size_t p = 0; p < grouping.poses.size(); ++p)
