@@ -79,6 +79,12 @@ class L2S_EXPORT BoardPoseRefiner {
   Result refine(const Image& left, const Image& right, const StereoCamera& camera,
                 const Target& target, const Eigen::Isometry3d& T_camera_board) const;
 
+  /// One rectified image (a mono camera): the rims of that view alone
+  /// (use_right_image is ignored). A single view sees depth only through the
+  /// rims' size and shape, so start it from a good pose (markers).
+  Result refine(const Image& image, const CameraInfo& camera, const Target& target,
+                const Eigen::Isometry3d& T_camera_board) const;
+
  private:
   Params params_;
 };

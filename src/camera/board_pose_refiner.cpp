@@ -631,4 +631,14 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
   return retry.converged ? retry : result;
 }
 
+BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& image, const CameraInfo& camera,
+                                                  const Target& target,
+                                                  const Eigen::Isometry3d& T_camera_board) const {
+  Params one_view = params_;
+  one_view.use_right_image = false;
+  // The pair's checks see the one image twice; only the left view is fitted.
+  return BoardPoseRefiner(one_view).refine(image, image, StereoCamera{camera, camera, ImageKind::Rectified},
+                                           target, T_camera_board);
+}
+
 }  // namespace l2s
