@@ -30,7 +30,8 @@ class L2S_EXPORT MonoBoardDetector {
   struct Params {
     int min_markers = 1;               ///< fewest of the target's markers that give a pose (one gives 4 corners), >= 1
     double max_marker_rms_px = 1.5;    ///< [px] rms of the marker corners under the PnP pose above which the pose is rejected, > 0
-    bool refine_with_rims = true;      ///< refine the marker pose with the hole rims in the image
+    bool refine_with_rims = true;      ///< refine the marker pose with the hole rims in the image (one fit of rims and marker corners)
+    double marker_weight = 5.0;        ///< in that fit, each marker corner coordinate weighs as this many rim samples (0: rims alone), >= 0
     BoardPoseRefiner::Params rims;     ///< the rim refinement (its use_right_image is ignored: one view)
     double max_rim_shift = 0.03;       ///< [m] a rim refinement that moves a hole centre farther than this from the marker pose is not trusted (marker pose kept), > 0
 

@@ -13,6 +13,7 @@
 #include "camera/marker_detection.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace l2s {
@@ -40,6 +41,19 @@ HoleCenters centres_of(const Target& target, const Eigen::Isometry3d& T_camera_b
   return centres;
 }
 
+/// The marker corners as points for the joint fit with the rims.
+std::vector<BoardPoseRefiner::PointObservation> corner_points(const std::vector<MonoBoardDetector::Marker>& markers,
+                                                              const MarkerLayout& layout) {
+  std::vector<BoardPoseRefiner::PointObservation> points;
+  for (const auto& marker : markers) {
+    const auto index = static_cast<std::size_t>(
+        std::find(layout.ids.begin(), layout.ids.end(), marker.id) - layout.ids.begin());
+    const auto corners = layout.corners(index);
+    for (std::size_t c = 0; c < 4; ++c) points.push_back({corners[c], marker.corners_px[c]});
+  }
+  return points;
+}
+
 double largest_shift(const HoleCenters& a, const HoleCenters& b) {
   double shift = 0.0;
   for (std::size_t h = 0; h < 4; ++h) shift = std::max(shift, (a[h] - b[h]).norm());
@@ -52,6 +66,7 @@ void MonoBoardDetector::Params::validate() const {
   if (min_markers < 1) throw ParamError("min_markers", "must be >= 1");
   if (!(max_marker_rms_px > 0.0)) throw ParamError("max_marker_rms_px", "must be > 0");
   if (!(max_rim_shift > 0.0)) throw ParamError("max_rim_shift", "must be > 0");
+  if (!(marker_weight >= 0.0) || !std::isfinite(marker_weight)) throw ParamError("marker_weight", "must be >= 0");
   try {
     rims.validate();
   } catch (const ParamError& e) {
@@ -105,8 +120,9 @@ Result MonoBoardDetector::detect(const Image& image) const {
   Eigen::Isometry3d T_working_board = pose.T_camera_board;
   if (params_.refine_with_rims) {
     const Image rectified = rectifier_ ? rectifier_->rectify(image) : Image{};
-    const BoardPoseRefiner::Result rims =
-        BoardPoseRefiner(params_.rims).refine(rectifier_ ? rectified : image, working_, target_, T_working_board);
+    const BoardPoseRefiner::Result rims = BoardPoseRefiner(params_.rims).refine(
+        rectifier_ ? rectified : image, working_, target_, T_working_board, corner_points(working, layout),
+        params_.marker_weight);
     const double shift = largest_shift(centres_of(target_, rims.T_camera_board), centres_of(target_, T_working_board));
     if (!rims.converged) {
       result.note = "rim refinement did not converge (" + rims.reason + "); marker pose kept";
