@@ -67,7 +67,7 @@ TEST(MonoBoardDetector, FindsTheHolesFromTheDefaultMarkers) {
     EXPECT_EQ(result.markers.size(), 4u);
     EXPECT_LT(result.marker_rms_px, 0.5);
     EXPECT_TRUE(result.rim_refined) << result.note;
-    EXPECT_LT(centre_error(result.centers, simulator), 0.008) << "frame " << i;
+    EXPECT_LT(centre_error(result.centers, simulator), 0.002) << "frame " << i;
   }
 }
 
@@ -82,7 +82,8 @@ TEST_P(MonoBoardDetectorRaw, CentresAreInThePhysicalCameraFrame) {
   const auto result = detector_for(simulator, target).detect(simulator.frame(0).left);
   ASSERT_TRUE(result.found) << result.failed_stage << ": " << result.reason;
   EXPECT_EQ(result.markers.size(), 4u);
-  EXPECT_LT(centre_error(result.centers, simulator), 0.01);
+  EXPECT_TRUE(result.rim_refined) << result.note;
+  EXPECT_LT(centre_error(result.centers, simulator), 0.003);
 }
 
 INSTANTIATE_TEST_SUITE_P(Lenses, MonoBoardDetectorRaw,
@@ -103,13 +104,13 @@ TEST(MonoBoardDetector, WorksWithMarkersHiddenAndSaysWhenAllAre) {
   ASSERT_EQ(two.markers.size(), 2u);
   EXPECT_EQ(two.markers[0].id, 2);
   EXPECT_EQ(two.markers[1].id, 3);
-  EXPECT_LT(centre_error(two.centers, simulator), 0.01);
+  EXPECT_LT(centre_error(two.centers, simulator), 0.003);
 
   hide_marker(image, simulator, 1);
   const auto one = detector.detect(image);  // one marker's four corners still give a pose
   ASSERT_TRUE(one.found) << one.failed_stage << ": " << one.reason;
   EXPECT_EQ(one.markers.size(), 1u);
-  EXPECT_LT(centre_error(one.centers, simulator), 0.02);
+  EXPECT_LT(centre_error(one.centers, simulator), 0.005);
 
   hide_marker(image, simulator, 2);
   const auto none = detector.detect(image);
@@ -131,7 +132,7 @@ TEST(MonoBoardDetector, AnotherMarkerLayoutRendersAndIsFound) {
   const auto result = detector_for(simulator, target).detect(image);
   ASSERT_TRUE(result.found) << result.failed_stage << ": " << result.reason;
   EXPECT_EQ(result.markers.size(), 3u);
-  EXPECT_LT(centre_error(result.centers, simulator), 0.01);
+  EXPECT_LT(centre_error(result.centers, simulator), 0.003);
 
   // The default layout's dictionary and ids are not on this board.
   const auto other = detector_for(simulator, Target::with_default_markers()).detect(image);
