@@ -84,6 +84,7 @@ BranchReport detect_mono(const io::Dataset& dataset, const io::Frame& frame, con
   report.found = result.found;
   report.failed_stage = result.failed_stage;
   report.reason = result.reason;
+  report.centers = result.centers;
   if (!result.markers.empty()) std::printf("        marker corners rms %.3f px under the PnP pose\n", result.marker_rms_px);
   if (result.rim_refined) std::printf("        refined with the hole rims: rms %.3f px\n", result.rim_rms_px);
   if (!result.note.empty()) std::printf("        note: %s\n", result.note.c_str());
@@ -93,6 +94,19 @@ BranchReport detect_mono(const io::Dataset& dataset, const io::Frame& frame, con
                   result.centers[h].y(), result.centers[h].z());
   std::printf("\n");
   return report;
+}
+
+/// A stereo board that carries markers: the left image alone, by its
+/// markers, as an independent check of the stereo branch's centres.
+void cross_check_with_markers(const io::Dataset& dataset, const io::Frame& frame, const Calibrator::Params& params,
+                              const BranchReport& stereo) {
+  std::printf("cross-check: the board's markers in the left image alone\n");
+  const BranchReport mono = detect_mono(dataset, frame, params);
+  if (!mono.found || !stereo.found) return;
+  std::printf("        markers - stereo:");
+  for (int h = 0; h < 4; ++h)
+    std::printf(" %s %.1f mm", hole_name(static_cast<Hole>(h)), (mono.centers[h] - stereo.centers[h]).norm() * 1e3);
+  std::printf("\n\n");
 }
 
 int run_detect(const DetectOptions& options) {
@@ -146,6 +160,7 @@ int run_detect(const DetectOptions& options) {
     if (!inspection.report.found)
       failures.push_back("camera: " + inspection.report.failed_stage + ": " +
                          inspection.report.reason);
+    if (target.markers) cross_check_with_markers(dataset, frame, params, inspection.report);
   }
 
   const char* prefix = "wrote   ";
