@@ -31,11 +31,23 @@ sim::SimulationConfig mono_config(int setting, int frames) {
   return config;
 }
 
-Calibrator::Result calibrate(const sim::DatasetSimulator& simulator) {
+/// The calibration and the check of a transform 1 deg off (it must not pass).
+struct Calibrated {
+  Calibrator::Result result;
+  CalibrationCheck::Verdict wrong_verdict = CalibrationCheck::Verdict::Ok;
+};
+
+Calibrated calibrate(const sim::DatasetSimulator& simulator) {
   const StereoCamera cameras = simulator.cameras();
   Calibrator calibrator(cameras.left, cameras.images, simulator.config().target);
   for (int i = 0; i < simulator.config().frames; ++i) calibrator.add(simulator.frame(i).lidar, simulator.frame(i).left);
-  return calibrator.result();
+  Calibrated out{calibrator.result()};
+  Eigen::Isometry3d wrong = simulator.T_lidar_camera();
+  wrong.linear() = wrong.linear() * Eigen::AngleAxisd(1.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  out.wrong_verdict = CalibrationCheck(calibrator.cameras(), calibrator.target(), calibrator.params().check)
+                          .check(calibrator.check_frames(), wrong)
+                          .verdict;
+  return out;
 }
 
 struct MonoCase {
@@ -53,12 +65,14 @@ TEST_P(CalibratorMono, RecoversTheTransformFromMarkers) {
   auto config = mono_config(c.setting, c.frames);
   if (c.lens != sim::DistortionModel::None) config.rig = config.rig.with_real_lenses(c.lens);
   const sim::DatasetSimulator simulator(config);
-  const Calibrator::Result result = calibrate(simulator);
+  const Calibrated calibrated = calibrate(simulator);
+  const Calibrator::Result& result = calibrated.result;
   ASSERT_TRUE(result.found) << result.reason;
   EXPECT_EQ(result.camera_frames, c.frames);
-  EXPECT_FALSE(result.checked);  // no scene check for a mono camera, and a note says so
-  ASSERT_FALSE(result.notes.empty());
-  EXPECT_NE(result.notes.front().find("mono"), std::string::npos);
+  // The scene check on the left image's edges and the markers' board pose.
+  EXPECT_TRUE(result.checked);
+  EXPECT_EQ(result.quality.verdict, CalibrationCheck::Verdict::Ok) << result.quality.reasons.front();
+  EXPECT_NE(calibrated.wrong_verdict, CalibrationCheck::Verdict::Ok);
   const PoseError error = pose_error(result.T_lidar_camera, simulator.T_lidar_camera());
   EXPECT_LT(error.translation, c.max_t);
   EXPECT_LT(error.rotation, c.max_r_deg * kDeg);

@@ -175,9 +175,10 @@ class L2S_EXPORT Calibrator {
   /// Lidar-mono (DATASET.md v2): the camera side is one camera, which finds
   /// the board by the ArUco markers of `target` (MonoBoardDetector); frames
   /// come through add(lidar, left). Accumulation and registration are the
-  /// stereo path's. The scene check is not run (Result::notes says so): it
-  /// compares stereo depth. Throws ParamError as above, and for a target
-  /// without markers.
+  /// stereo path's. The scene check uses the left image's edges and the
+  /// markers' board pose (no stereo depth), and weighs no relabelled
+  /// alternatives: the markers fix the camera's hole labels. Throws
+  /// ParamError as above, and for a target without markers.
   Calibrator(CameraInfo camera, ImageKind images, Target target, Params params = Params::preset("default"));
   ~Calibrator();
   Calibrator(Calibrator&&) noexcept;

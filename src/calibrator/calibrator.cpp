@@ -51,7 +51,7 @@ struct Calibrator::Impl {
   std::shared_ptr<const MonoBoardDetector> mono;
   Target target;
   Params params;
-  bool check = false;  // the scene check runs (params.check_result; stereo only: it compares stereo depth)
+  bool check = false;  // the scene check runs (params.check_result)
   std::vector<FrameReport> frames;
   SceneObserver observer;
   detail::CheckFrameKeeper check_frames;
@@ -172,6 +172,7 @@ struct Calibrator::Impl {
         mono(std::make_shared<const MonoBoardDetector>(cameras.left, images, t, p.mono)),
         target(t),
         params(std::move(p)),
+        check(params.check_result),
         observer(params.observer),
         check_frames(params.check_frames) {}
 };
@@ -273,10 +274,17 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const st
   const bool ring_free = detail::is_ring_free(lidar);
   report.lidar = impl.lidar_branch(lidar, ring_free, &lidar_trace);
   report.camera = camera.valid() ? camera.get() : camera_branch();
-  const std::shared_ptr<const CameraObservation> observation = report.camera.observation;
+  // The check sees the left image's edges and the markers' board pose (no
+  // stereo depth): made only for the frames it keeps.
+  const std::shared_ptr<const CameraObservation> pose = report.camera.observation;
+  const auto observe_camera = [&] {
+    auto observation = std::make_shared<CameraObservation>(pose ? *pose : CameraObservation{});
+    observation->edges = impl.observer.observe_edges(left, impl.cameras);
+    return std::shared_ptr<const CameraObservation>(std::move(observation));
+  };
   FrameReport recorded = impl.record(
       std::move(report), id, ring_free, [&] { return observe_lidar(lidar, lidar_trace, true, impl.observer); },
-      [&] { return observation; });
+      observe_camera);
   recorded.milliseconds = impl.frames.back().milliseconds = milliseconds_since(start);
   return recorded;
 }
@@ -304,11 +312,9 @@ Calibrator::Result Calibrator::result() const {
   Result result = impl.registered();
   if (!result.found)
     result.quality.reasons = {"no transform to check: " + result.reason};
-  else if (impl.mono && impl.params.check_result)
-    result.notes.push_back("no scene check for a mono camera (it compares the scene's stereo depth and edges); "
-                           "look at the overlay");
   else if (impl.params.check_result)
-    detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params);
+    detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params,
+                         impl.mono != nullptr);
   return result;
 }
 
