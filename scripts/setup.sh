@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ccache pkg-config
-  libeigen3-dev libpcl-dev libopencv-dev libyaml-cpp-dev libcli11-dev
+  libeigen3-dev libpcl-dev libopencv-dev libopencv-contrib-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev  # scripts/sanitize.sh and scripts/fuzz.sh: sanitizers and libFuzzer
   python3 python3-yaml python3-matplotlib  # dataset checker and the suite's plots

@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 #include <string>
+#include <vector>
 
 namespace l2s {
 
@@ -84,7 +85,26 @@ class L2S_EXPORT BoardPoseRefiner {
   Result refine(const Image& left, const Image& right, const StereoCamera& camera,
                 const Target& target, const Eigen::Isometry3d& T_camera_board) const;
 
+  /// A board point seen at a known pixel (a marker corner), fitted together with the rims.
+  struct PointObservation {
+    Eigen::Vector3d X_board;  ///< [m] board frame
+    Eigen::Vector2d pixel;    ///< [px] in the rectified image
+  };
+
+  /// One rectified image (a mono camera): the rims of that view (use_right_image
+  /// is ignored) and `points`, each of whose image coordinates weighs as much
+  /// as `point_weight` rim samples (>= 0; ParamError otherwise). A single view
+  /// sees the depth and tilt of the small hole pattern weakly through the
+  /// rims' size and shape; points far apart (the markers' corners) hold them.
+  Result refine(const Image& image, const CameraInfo& camera, const Target& target,
+                const Eigen::Isometry3d& T_camera_board, const std::vector<PointObservation>& points = {},
+                double point_weight = 1.0) const;
+
  private:
+  Result refine_with_anchors(const Image& left, const Image& right, const StereoCamera& camera, const Target& target,
+                             const Eigen::Isometry3d& T_camera_board, const std::vector<PointObservation>& points,
+                             double point_weight) const;
+
   Params params_;
 };
 

@@ -22,6 +22,7 @@
 #include <l2s/export.hpp>
 #include <l2s/geometry.hpp>
 #include <l2s/joint_registrar.hpp>
+#include <l2s/mono_board_detector.hpp>
 #include <l2s/pass_through_filter.hpp>
 #include <l2s/plane_segmenter.hpp>
 #include <l2s/pose_grouper.hpp>
@@ -51,6 +52,7 @@ struct BranchReport {
   double fit_rms = 0.0;           ///< [m] rms of the circle finder's rim fit (both branches)
   double rim_rms_px = 0.0;        ///< [px] camera: rms of the rim refinement whose centres were kept; 0 when not refined
   double hole_radius = 0.0;       ///< [m] apparent hole radius of the rim fit (real lidars see holes smaller than they are)
+  int markers = 0;                ///< mono camera: the target's ArUco markers found in the image
   int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
   double milliseconds = 0.0;      ///< [ms] wall time of the branch
@@ -110,6 +112,8 @@ class L2S_EXPORT Calibrator {
     BoardVerifier::Params camera_verifier;
     bool refine_camera_pose = true;  ///< fit the board pose to the hole rims in both images
     BoardPoseRefiner::Params board_refiner;
+    // Mono camera (lidar-mono): the board by its ArUco markers, refined with the rims.
+    MonoBoardDetector::Params mono;
     // Accumulation and registration.
     CenterAccumulator::Params accumulator;  ///< its min_frames: fewest frames with centres on each side for a result
     Registrar::Params registrar;
@@ -168,6 +172,14 @@ class L2S_EXPORT Calibrator {
   /// cameras (image size or fx, fy not positive, P not finite, or a stereo
   /// baseline -P_right[0][3] / fx_right that is not positive).
   Calibrator(StereoCamera cameras, Target target, Params params = Params::preset("default"));
+  /// Lidar-mono (DATASET.md v2): the camera side is one camera, which finds
+  /// the board by the ArUco markers of `target` (MonoBoardDetector); frames
+  /// come through add(lidar, left). Accumulation and registration are the
+  /// stereo path's. The scene check uses the left image's edges and the
+  /// markers' board pose (no stereo depth), and weighs no relabelled
+  /// alternatives: the markers fix the camera's hole labels. Throws
+  /// ParamError as above, and for a target without markers.
+  Calibrator(CameraInfo camera, ImageKind images, Target target, Params params = Params::preset("default"));
   ~Calibrator();
   Calibrator(Calibrator&&) noexcept;
   Calibrator& operator=(Calibrator&&) noexcept;
@@ -185,6 +197,17 @@ class L2S_EXPORT Calibrator {
   /// that do not fill the image, or a size other than the cameras'.
   FrameReport add(const LidarCloud& lidar, const Image& left, const Image& right,
                   const std::string& id = "");
+
+  /// Lidar-mono: one frame of the lidar and the one camera (a calibrator
+  /// built with a CameraInfo). Throws InputError for an unusable image, or
+  /// ("right image: ...") on a stereo calibrator.
+  FrameReport add(const LidarCloud& lidar, const Image& left, const std::string& id = "");
+
+  /// The mono camera's branch alone (see camera_branch(left, right)).
+  BranchReport camera_branch(const Image& left) const;
+
+  /// Built for one camera (lidar-mono)?
+  bool mono() const;
 
   /// The camera branch of add() alone, accumulating nothing. Its report can be
   /// given to add(lidar, camera) of every calibrator with the same cameras,

@@ -54,4 +54,8 @@ BranchReport run_camera_branch(const Image& left, const Image& right, const Came
                                const Target& target, const Calibrator::Params& params,
                                CameraInspection* trace = nullptr);
 
+/// Mono camera: the board by its markers (MonoBoardDetector), as a branch
+/// report: the same four centres in the camera frame as the stereo branch's.
+BranchReport run_mono_branch(const Image& left, const MonoBoardDetector& detector);
+
 }  // namespace l2s::detail

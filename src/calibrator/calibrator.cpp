@@ -45,10 +45,14 @@ CameraObservation observation_from_centers(const HoleCenters& centers) {
 }  // namespace
 
 struct Calibrator::Impl {
-  StereoCamera cameras;
-  detail::CameraSetup camera_setup;  // rectified cameras (and the rectifier for raw images)
+  StereoCamera cameras;  // mono: the left camera alone (right default-constructed)
+  // The camera side: a stereo pair (rectified cameras, and the rectifier for
+  // raw images) or one camera finding the board by its markers.
+  std::optional<detail::CameraSetup> camera_setup;
+  std::shared_ptr<const MonoBoardDetector> mono;
   Target target;
   Params params;
+  bool check = false;  // the scene check runs (params.check_result)
   std::vector<FrameReport> frames;
   SceneObserver observer;
   detail::CheckFrameKeeper check_frames;
@@ -67,12 +71,12 @@ struct Calibrator::Impl {
                      ObserveCamera&& observe_camera) {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
     std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
-    if (params.check_result && ring_free) {
+    if (check && ring_free) {
       if (report.camera.found && !window_camera) window_camera = observe_camera();
       if (report.lidar.found && !report.camera.found) camera = window_camera;
       if (report.lidar.failed_stage != "accumulating") window_camera.reset();  // the window is closed
     }
-    if (params.check_result && report.lidar.found && (report.camera.found || camera)) {
+    if (check && report.lidar.found && (report.camera.found || camera)) {
       if (check_frames.wants_next())
         check_frames.keep(CheckFrame{report.id, observe_lidar(), camera ? *camera : *observe_camera()});
       else
@@ -122,9 +126,19 @@ struct Calibrator::Impl {
 
   Impl(StereoCamera c, Target t, Params p)
       : cameras(std::move(c)),
-        camera_setup(cameras),
+        camera_setup(std::in_place, cameras),
         target(t),
         params(std::move(p)),
+        check(params.check_result),
+        observer(params.observer),
+        check_frames(params.check_frames) {}
+
+  Impl(CameraInfo camera, ImageKind images, Target t, Params p)
+      : cameras{std::move(camera), CameraInfo{}, images},
+        mono(std::make_shared<const MonoBoardDetector>(cameras.left, images, t, p.mono)),
+        target(t),
+        params(std::move(p)),
+        check(params.check_result),
         observer(params.observer),
         check_frames(params.check_frames) {}
 };
@@ -136,6 +150,13 @@ Calibrator::Calibrator(StereoCamera cameras, Target target, Params params) {
   impl_ = std::make_unique<Impl>(std::move(cameras), target, std::move(params));
 }
 
+Calibrator::Calibrator(CameraInfo camera, ImageKind images, Target target, Params params) {
+  params.validate();
+  target.validate();
+  detail::check_camera(camera, "cameras.left");
+  impl_ = std::make_unique<Impl>(std::move(camera), images, target, std::move(params));
+}
+
 Calibrator::~Calibrator() = default;
 Calibrator::Calibrator(Calibrator&&) noexcept = default;
 Calibrator& Calibrator::operator=(Calibrator&&) noexcept = default;
@@ -144,6 +165,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
                             const std::string& id) {
   const auto start = std::chrono::steady_clock::now();
   Impl& impl = *impl_;
+  if (impl.mono) throw InputError("right image", "given to a lidar-mono calibrator (add(lidar, left) takes one image)");
   // Here, not in the camera branch: an exception must leave before the lidar
   // branch runs and from the caller's thread.
   detail::check_stereo_images(left, right, impl.cameras);
@@ -155,7 +177,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   const auto lidar_branch = [&] { return impl.lidar.detect(lidar, ring_free, &lidar_trace); };
   const auto camera_branch = [&] {
     return timed([&] {
-      return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &camera_trace);
+      return detail::run_camera_branch(left, right, *impl.camera_setup, impl.target, impl.params, &camera_trace);
     });
   };
 
@@ -185,16 +207,55 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
 
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
   const Impl& impl = *impl_;
+  if (impl.mono) throw InputError("right image", "given to a lidar-mono calibrator (camera_branch(left) takes one image)");
   detail::check_stereo_images(left, right, impl.cameras);
   CameraInspection trace;
   BranchReport report = timed([&] {
-    return detail::run_camera_branch(left, right, impl.camera_setup, impl.target, impl.params, &trace);
+    return detail::run_camera_branch(left, right, *impl.camera_setup, impl.target, impl.params, &trace);
   });
   if (impl.params.check_result && report.found)
     report.observation = std::make_shared<const CameraObservation>(
         observe_camera(left, trace, true, impl.cameras, impl.observer));
   return report;
 }
+
+BranchReport Calibrator::camera_branch(const Image& left) const {
+  const Impl& impl = *impl_;
+  if (!impl.mono) throw InputError("right image", "missing: a stereo calibrator takes camera_branch(left, right)");
+  detail::check_image(left, impl.cameras.left, "left");
+  return timed([&] { return detail::run_mono_branch(left, *impl.mono); });
+}
+
+FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const std::string& id) {
+  const auto start = std::chrono::steady_clock::now();
+  Impl& impl = *impl_;
+  // Before any work, from the caller's thread (as the stereo add()).
+  if (!impl.mono) throw InputError("right image", "missing: a stereo calibrator takes add(lidar, left, right)");
+  detail::check_image(left, impl.cameras.left, "left");
+  const auto camera_branch = [&] { return timed([&] { return detail::run_mono_branch(left, *impl.mono); }); };
+  std::future<BranchReport> camera;
+  if (impl.params.parallel_branches) camera = std::async(std::launch::async, camera_branch);
+  LidarInspection lidar_trace;
+  FrameReport report;
+  const bool ring_free = detail::is_ring_free(lidar);
+  report.lidar = impl.lidar.detect(lidar, ring_free, &lidar_trace);
+  report.camera = camera.valid() ? camera.get() : camera_branch();
+  // The check sees the left image's edges and the markers' board pose (no
+  // stereo depth): made only for the frames it keeps.
+  const std::shared_ptr<const CameraObservation> pose = report.camera.observation;
+  const auto observe_camera = [&] {
+    auto observation = std::make_shared<CameraObservation>(pose ? *pose : CameraObservation{});
+    observation->edges = impl.observer.observe_edges(left, impl.cameras);
+    return std::shared_ptr<const CameraObservation>(std::move(observation));
+  };
+  FrameReport recorded = impl.record(
+      std::move(report), id, ring_free, [&] { return observe_lidar(lidar, lidar_trace, true, impl.observer); },
+      observe_camera);
+  recorded.milliseconds = impl.frames.back().milliseconds = milliseconds_since(start);
+  return recorded;
+}
+
+bool Calibrator::mono() const { return impl_->mono != nullptr; }
 
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
@@ -218,7 +279,8 @@ Calibrator::Result Calibrator::result() const {
   if (!result.found)
     result.quality.reasons = {"no transform to check: " + result.reason};
   else if (impl.params.check_result)
-    detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params);
+    detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params,
+                         impl.mono != nullptr);
   return result;
 }
 

@@ -82,6 +82,7 @@ void Calibrator::Params::validate() const {
   validate_field("camera_circles", [&] { camera_circles.validate(); });
   validate_field("camera_verifier", [&] { camera_verifier.validate(); });
   validate_field("board_refiner", [&] { board_refiner.validate(); });
+  validate_field("mono", [&] { mono.validate(); });
   validate_field("accumulator", [&] { accumulator.validate(); });
   validate_field("registrar", [&] { registrar.validate(); });
   validate_field("poses", [&] { poses.validate(); });

@@ -244,6 +244,16 @@ void visit(V& v, CalibrationCheck::Params& p) {
 }
 
 template <class V>
+void visit(V& v, MonoBoardDetector::Params& p) {
+  v.field("min_markers", p.min_markers);
+  v.field("max_marker_rms_px", p.max_marker_rms_px);
+  v.field("refine_with_rims", p.refine_with_rims);
+  v.field("marker_weight", p.marker_weight);
+  v.section("rims", [&](V& s) { visit(s, p.rims); });
+  v.field("max_rim_shift", p.max_rim_shift);
+}
+
+template <class V>
 void visit(V& v, Calibrator::Params& p) {
   v.section("lidar_pass_through", [&](V& s) { visit(s, p.lidar_pass_through); });
   v.section("lidar_plane", [&](V& s) { visit(s, p.lidar_plane); });
@@ -260,6 +270,7 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("camera_verifier", [&](V& s) { visit(s, p.camera_verifier); });
   v.field("refine_camera_pose", p.refine_camera_pose);
   v.section("board_refiner", [&](V& s) { visit(s, p.board_refiner); });
+  v.section("mono", [&](V& s) { visit(s, p.mono); });
   v.section("accumulator", [&](V& s) { visit(s, p.accumulator); });
   v.section("registrar", [&](V& s) { visit(s, p.registrar); });
   v.section("poses", [&](V& s) { visit(s, p.poses); });

@@ -4,6 +4,7 @@
 #include "calibrator/result_check.hpp"
 
 #include "calibrator/pose_registration.hpp"
+#include "check/verdict.hpp"
 
 #include <cstdio>
 
@@ -28,7 +29,7 @@ bool adopt(Calibrator::Result& result, const CalibrationCheck::Alternative& turn
 }  // namespace
 
 void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& frames, const StereoCamera& cameras,
-                  const Target& target, const Calibrator::Params& params) {
+                  const Target& target, const Calibrator::Params& params, bool labels_fixed) {
   const Registrar registrar(params.registrar);
   const CalibrationCheck check(cameras, target, params.check);
   const auto alternatives = [&] {
@@ -36,7 +37,14 @@ void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& fra
                                    registrar);
   };
   CalibrationCheck::Report report = check.check(frames, result.T_lidar_camera, alternatives());
-  if (report.preferred >= 0 &&
+  if (labels_fixed) {
+    // The board's own labels need no vote of the scene: judged without the alternatives.
+    report.alternatives.clear();
+    report.preferred = -1;
+    report.ambiguous = false;
+    report.reasons.clear();
+    judge(report, params.check, cameras.left.fx());
+  } else if (report.preferred >= 0 &&
       adopt(result, report.alternatives[report.preferred], report.scores.support, params)) {
     const double milliseconds = report.milliseconds;
     report = check.check(frames, result.T_lidar_camera, alternatives());

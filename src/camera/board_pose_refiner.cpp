@@ -103,9 +103,11 @@ struct View {
 /// A rim point matched to an image edge in one view.
 struct Sample {
   int view;
-  Eigen::Vector3d X_board;   // [m] on a rim circle
-  Eigen::Vector2d normal;    // unit, image normal of the projected rim
+  Eigen::Vector3d X_board;   // [m] on a rim circle (or a known point: an anchor)
+  Eigen::Vector2d normal;    // unit, image normal of the projected rim (an anchor: one image axis)
   Eigen::Vector2d observed;  // [px] edge position found on the search line
+  double weight = 1.0;       // an anchor's weight relative to one rim sample
+  bool rim = true;           // false: an anchor (not in the edge rms)
 };
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
@@ -367,9 +369,10 @@ Eigen::Matrix<double, 6, 1> gauss_newton_delta(const std::vector<Sample>& sample
     Eigen::Matrix<double, 3, 6> dp;  // d(exp(delta) p) / d(v, omega) at 0
     dp << Eigen::Matrix3d::Identity(), -skew(p);
     const Eigen::Matrix<double, 1, 6> row = sample.normal.transpose() * J * dp;
-    const double w = std::abs(residual) <= huber_px ? 1.0 : huber_px / std::abs(residual);
+    const double w = sample.weight * (std::abs(residual) <= huber_px ? 1.0 : huber_px / std::abs(residual));
     H += w * row.transpose() * row;
     g += w * row.transpose() * residual;
+    if (!sample.rim) continue;
     sum_sq += residual * residual;
     sum_w += 1.0;
   }
@@ -455,8 +458,9 @@ bool settled_in_image(double step_px, double previous_step_px, bool locked, cons
 /// (EdgeSearch).
 class Alignment {
  public:
-  Alignment(const Params& params, const Rims& rims, const std::vector<View>& views)
-      : params_(params), rims_(rims), views_(views), edges_(params, rims, views) {}
+  /// `anchors`: known points fitted with the rims in every round (marker corners of a mono camera).
+  Alignment(const Params& params, const Rims& rims, const std::vector<View>& views, const std::vector<Sample>& anchors)
+      : params_(params), rims_(rims), views_(views), anchors_(anchors), edges_(params, rims, views) {}
 
   /// Fills `result` (reason empty: converged) with the pose the rounds end at.
   void run(const Eigen::Isometry3d& T_camera_board, BoardPoseRefiner::Result& result) {
@@ -492,6 +496,7 @@ class Alignment {
       return false;
     }
 
+    samples_.insert(samples_.end(), anchors_.begin(), anchors_.end());
     const Eigen::Isometry3d T_round_start = T;
     RoundMotion motion;
     if (!fit_pose(samples_, views_, params_, T, motion, result.rms_px)) {
@@ -510,8 +515,9 @@ class Alignment {
   const Params& params_;
   const Rims& rims_;
   const std::vector<View>& views_;
+  const std::vector<Sample>& anchors_;
   EdgeSearch edges_;
-  std::vector<Sample> samples_;  // the last round's edges
+  std::vector<Sample> samples_;  // the last round's edges (and the anchors)
   bool settled_ = false;
   bool lock_selection_ = false;  // the next round keeps this round's sample selection
   double previous_step_px_ = std::numeric_limits<double>::infinity();
@@ -590,12 +596,12 @@ double face_edge_fraction(const Params& params, const Target& target, const std:
 /// The rounds with min_edge_strength, and when they fail, once more with the
 /// threshold lowered to the rims' own contrast (edge_strength()).
 BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& views, const Rims& rims,
-                               const Eigen::Isometry3d& T_camera_board, const cv::Mat& gray_left,
-                               const cv::Mat& gray_right) {
+                               const std::vector<Sample>& anchors, const Eigen::Isometry3d& T_camera_board,
+                               const cv::Mat& gray_left, const cv::Mat& gray_right) {
   BoardPoseRefiner::Result result;
   result.T_camera_board = T_camera_board;
   result.edge_strength = params.min_edge_strength;
-  Alignment(params, rims, views).run(T_camera_board, result);
+  Alignment(params, rims, views, anchors).run(T_camera_board, result);
   result.converged = result.reason.empty();
   if (result.converged) return result;
   // A weaker threshold only when the ordinary one failed: on a textured
@@ -608,7 +614,7 @@ BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& vi
   BoardPoseRefiner::Result retry = result;
   retry.reason.clear();
   retry.edge_strength = weaker.min_edge_strength;
-  Alignment(weaker, rims, views).run(T_camera_board, retry);
+  Alignment(weaker, rims, views, anchors).run(T_camera_board, retry);
   retry.converged = retry.reason.empty();
   return retry.converged ? retry : result;
 }
@@ -645,7 +651,20 @@ BoardPoseRefiner::BoardPoseRefiner(Params params) : params_(params) { params_.va
 BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image& right,
                                                   const StereoCamera& camera, const Target& target,
                                                   const Eigen::Isometry3d& T_camera_board) const {
+  return refine_with_anchors(left, right, camera, target, T_camera_board, {}, 0.0);
+}
+
+BoardPoseRefiner::Result BoardPoseRefiner::refine_with_anchors(const Image& left, const Image& right,
+                                                               const StereoCamera& camera, const Target& target,
+                                                               const Eigen::Isometry3d& T_camera_board,
+                                                               const std::vector<PointObservation>& points,
+                                                               double point_weight) const {
   target.validate();
+  // Each anchor point is two samples: its residual along each image axis.
+  std::vector<Sample> anchors;
+  for (const PointObservation& point : points)
+    for (const Eigen::Vector2d& axis : {Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.0, 1.0)})
+      anchors.push_back({0, point.X_board, axis, point.pixel, point_weight, false});
   detail::check_stereo_images(left, right, camera);
   const cv::Mat gray_left = detail::gray_mat(left, "left");
   const cv::Mat gray_right = detail::gray_mat(right, "right");
@@ -662,11 +681,23 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image
     result.reason = "the board is behind a camera";
     return result;
   }
-  result = align(params_, views, rims, T_camera_board, gray_left, gray_right);
+  result = align(params_, views, rims, anchors, T_camera_board, gray_left, gray_right);
   Params used = params_;
   used.min_edge_strength = result.edge_strength;
   result.face_edge_fraction = face_edge_fraction(used, target, views, result.T_camera_board);
   return result;
+}
+
+BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& image, const CameraInfo& camera,
+                                                  const Target& target, const Eigen::Isometry3d& T_camera_board,
+                                                  const std::vector<PointObservation>& points,
+                                                  double point_weight) const {
+  if (!(point_weight >= 0.0) || !std::isfinite(point_weight)) throw ParamError("point_weight", "must be >= 0");
+  Params one_view = params_;
+  one_view.use_right_image = false;
+  // The pair's checks see the one image twice; only the left view is fitted.
+  return BoardPoseRefiner(one_view).refine_with_anchors(
+      image, image, StereoCamera{camera, camera, ImageKind::Rectified}, target, T_camera_board, points, point_weight);
 }
 
 }  // namespace l2s

@@ -10,6 +10,8 @@ namespace {
 
 std::string size_text(int width, int height) { return std::to_string(width) + "x" + std::to_string(height) + " px"; }
 
+}  // namespace
+
 void check_camera(const CameraInfo& camera, const std::string& name) {
   if (camera.width <= 0 || camera.height <= 0)
     throw ParamError(name + ".width", "image size " + size_text(camera.width, camera.height) + " must be positive");
@@ -18,6 +20,8 @@ void check_camera(const CameraInfo& camera, const std::string& name) {
   if (!(camera.fx() > 0.0) || !(camera.fy() > 0.0))
     throw ParamError(name + ".projection_matrix", "fx and fy must be positive");
 }
+
+namespace {
 
 void check_size(const Image& image, const CameraInfo& camera, const std::string& name) {
   if (camera.width <= 0 || (image.width == camera.width && image.height == camera.height)) return;

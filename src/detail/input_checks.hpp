@@ -16,6 +16,10 @@ namespace l2s::detail {
 /// or a stereo baseline -P_right[0][3] / fx_right that is not positive.
 void check_cameras(const StereoCamera& cameras);
 
+/// Throws ParamError naming `<name>.<field>` when one camera cannot be used:
+/// image size not positive, P not finite, fx or fy not positive.
+void check_camera(const CameraInfo& camera, const std::string& name);
+
 /// Throws InputError("<name> image", ...) when `image` is empty, has another
 /// channel count than 1 or 3, or pixels that do not fill width x height x channels.
 void check_image(const Image& image, const std::string& name);

@@ -108,6 +108,16 @@ void check_size(const Image& image, const CameraInfo& camera, const std::string&
                                   std::to_string(camera.height));
 }
 
+/// Stereo or mono (DATASET.md v2): right.yaml and right/ come together or not at all.
+CameraLayout camera_layout(const std::string& folder) {
+  std::error_code error;
+  const std::string right_yaml = join(folder, "right.yaml"), right_dir = join(folder, "right");
+  const bool has_yaml = fs::exists(right_yaml, error), has_dir = fs::is_directory(right_dir, error);
+  if (has_yaml && !has_dir) throw FileError(right_dir, "missing folder (right.yaml is there: a stereo dataset)");
+  if (has_dir && !has_yaml) throw FileError(right_yaml, "missing file (right/ is there: a stereo dataset)");
+  return has_yaml ? CameraLayout::Stereo : CameraLayout::Mono;
+}
+
 }  // namespace
 
 Dataset Dataset::open(const std::string& folder) {
@@ -128,12 +138,20 @@ Dataset Dataset::open(const std::string& folder) {
     return dataset;
   }
   const std::string left_yaml = join(folder, "left.yaml"), right_yaml = join(folder, "right.yaml");
-  dataset.cameras_ = read_stereo_camera(left_yaml, right_yaml, info.images);
-  dataset.warnings_ = rectified_pair_warnings(dataset.cameras_, left_yaml, right_yaml);
+  dataset.layout_ = camera_layout(folder);
+  if (dataset.mono()) {
+    dataset.cameras_.left = read_camera_info(left_yaml);
+    dataset.cameras_.images = info.images;
+    check_single_camera(dataset.cameras_.left, info.images, left_yaml);
+    dataset.warnings_ = rectified_camera_warnings(dataset.cameras_.left, info.images, left_yaml);
+  } else {
+    dataset.cameras_ = read_stereo_camera(left_yaml, right_yaml, info.images);
+    dataset.warnings_ = rectified_pair_warnings(dataset.cameras_, left_yaml, right_yaml);
+  }
 
   const auto lidar = stems_in(folder, "lidar", ".pcd");
   const auto left = stems_in(folder, "left", ".png");
-  const auto right = stems_in(folder, "right", ".png");
+  const auto right = dataset.mono() ? left : stems_in(folder, "right", ".png");
   if (lidar != left || lidar != right)
     throw FileError(folder, "frame stems differ between lidar/, left/ and right/: " +
                                 describe_mismatch(lidar, left, right));
@@ -154,10 +172,12 @@ Frame Dataset::load(std::size_t index) const {
     return frame;
   }
   frame.left = read_image(left_path(frame.stem));
-  frame.right = read_image(right_path(frame.stem));
-  // Both YAMLs share one size (read_stereo_camera), so left and right match too.
   check_size(frame.left, cameras_.left, left_path(frame.stem), "left.yaml");
-  check_size(frame.right, cameras_.right, right_path(frame.stem), "right.yaml");
+  if (!mono()) {
+    // Both YAMLs share one size (read_stereo_camera), so left and right match too.
+    frame.right = read_image(right_path(frame.stem));
+    check_size(frame.right, cameras_.right, right_path(frame.stem), "right.yaml");
+  }
   return frame;
 }
 

@@ -31,12 +31,17 @@ void check_image(const Image& image, const CameraInfo& camera, const char* field
 }  // namespace
 
 DatasetWriter::DatasetWriter(const std::string& folder, const StereoCamera& cameras,
-                             const Target& target)
-    : folder_(folder), cameras_(cameras) {
+                             const Target& target, CameraLayout layout)
+    : folder_(folder), cameras_(cameras), layout_(layout) {
+  const bool mono = layout == CameraLayout::Mono;
   // Refuse what the reader would reject, before any file exists.
-  check_pair(cameras, join(folder, "left.yaml"), join(folder, "right.yaml"));
+  if (mono)
+    check_single_camera(cameras.left, cameras.images, join(folder, "left.yaml"));
+  else
+    check_pair(cameras, join(folder, "left.yaml"), join(folder, "right.yaml"));
   target.validate();
   for (const char* sub : {"lidar", "left", "right"}) {
+    if (mono && std::string(sub) == "right") continue;
     std::error_code error;
     fs::create_directories(join(folder, sub), error);
     if (error) throw FileError(join(folder, sub), "cannot create folder: " + error.message());
@@ -50,7 +55,12 @@ DatasetWriter::DatasetWriter(const std::string& folder, const StereoCamera& came
     fs::remove(join(folder, "dataset.yaml"), error);
   }
   write_camera_info(join(folder, "left.yaml"), cameras.left);
-  write_camera_info(join(folder, "right.yaml"), cameras.right);
+  if (mono) {
+    std::error_code error;
+    fs::remove(join(folder, "right.yaml"), error);
+  } else {
+    write_camera_info(join(folder, "right.yaml"), cameras.right);
+  }
   write_target(join(folder, "target.yaml"), target);
 }
 
@@ -64,10 +74,11 @@ void DatasetWriter::write(const Frame& frame, PcdEncoding encoding) const {
     return;
   }
   check_image(frame.left, cameras_.left, "frame.left");
-  check_image(frame.right, cameras_.right, "frame.right");
+  const bool mono = layout_ == CameraLayout::Mono;
+  if (!mono) check_image(frame.right, cameras_.right, "frame.right");
   // Lidar last: a frame counts once its .pcd exists, and then its images do too.
   write_png(join(folder_, "left/" + frame.stem + ".png"), frame.left);
-  write_png(join(folder_, "right/" + frame.stem + ".png"), frame.right);
+  if (!mono) write_png(join(folder_, "right/" + frame.stem + ".png"), frame.right);
   write_pcd(join(folder_, "lidar/" + frame.stem + ".pcd"), frame.lidar, encoding);
 }
 

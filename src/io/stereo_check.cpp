@@ -117,6 +117,24 @@ void check_pair(const StereoCamera& cameras, const std::string& left_path,
     check_rectified_pair(cameras, left_path, right_path);
 }
 
+void check_single_camera(const CameraInfo& camera, ImageKind images, const std::string& path) {
+  if (images == ImageKind::Raw) {
+    check_camera_matrix(camera, path);
+    check_distortion(camera, path);
+    check_rotation(camera.rectification_matrix, path);
+  }
+  if (std::abs(camera.projection_matrix(0, 3)) > 1e-3 * camera.fx())
+    throw FileError(path, "projection_matrix P[0][3] must be 0 for the left camera");
+}
+
+std::vector<std::string> rectified_camera_warnings(const CameraInfo& camera, ImageKind images,
+                                                   const std::string& path) {
+  StereoCamera pair{camera, camera, images};
+  std::vector<std::string> warnings = rectified_pair_warnings(pair, path, path);
+  warnings.resize(warnings.size() / 2);  // the second camera's lines repeat the first's
+  return warnings;
+}
+
 std::vector<std::string> rectified_pair_warnings(const StereoCamera& cameras,
                                                  const std::string& left_path,
                                                  const std::string& right_path) {

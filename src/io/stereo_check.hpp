@@ -27,6 +27,15 @@ void check_raw_pair(const StereoCamera& cameras, const std::string& left_path,
 void check_pair(const StereoCamera& cameras, const std::string& left_path,
                 const std::string& right_path);
 
+/// The one camera of a mono dataset: for raw images K, D and R as
+/// check_raw_pair checks each camera; for both kinds P[0][3] ~ 0 (the
+/// reference camera). Throws FileError naming `path` and the key.
+void check_single_camera(const CameraInfo& camera, ImageKind images, const std::string& path);
+
+/// check_rectified_pair's warnings for the one camera of a mono dataset.
+std::vector<std::string> rectified_camera_warnings(const CameraInfo& camera, ImageKind images,
+                                                   const std::string& path);
+
 /// For a pair declared rectified: one line per file whose distortion is not
 /// zero or whose R is not the identity (the images may be raw). Empty otherwise.
 std::vector<std::string> rectified_pair_warnings(const StereoCamera& cameras,

@@ -7,7 +7,9 @@
 #include "detail/atomic_file.hpp"
 #include "io/yaml_helpers.hpp"
 
+#include <cmath>
 #include <filesystem>
+#include <vector>
 
 namespace l2s::io {
 namespace {
@@ -28,6 +30,69 @@ constexpr Field kFields[] = {
     {"hole_spacing_y", &Target::hole_spacing_y, "and vertically"},
 };
 
+/// A number of a sequence under `field`; FileError naming the field otherwise.
+double number_at(const YAML::Node& node, const std::string& field, const std::string& path) {
+  try {
+    if (node.IsScalar()) {
+      const double value = node.as<double>();
+      if (std::isfinite(value)) return value;
+    }
+  } catch (const YAML::Exception&) {
+  }
+  throw FileError(path, field + ": expected numbers");
+}
+
+std::vector<int> read_ids(const YAML::Node& node, const std::string& path) {
+  if (!node.IsSequence()) throw FileError(path, "markers.ids: expected a list of integers");
+  std::vector<int> ids;
+  for (const YAML::Node& item : node) {
+    const double value = number_at(item, "markers.ids", path);
+    if (value != std::floor(value) || std::abs(value) > 1e6) throw FileError(path, "markers.ids: expected integers");
+    ids.push_back(static_cast<int>(value));
+  }
+  return ids;
+}
+
+std::vector<Eigen::Vector2d> read_centres(const YAML::Node& node, const std::string& path) {
+  if (!node.IsSequence()) throw FileError(path, "markers.centres: expected a list of [x, y] pairs");
+  std::vector<Eigen::Vector2d> centres;
+  for (const YAML::Node& item : node) {
+    if (!item.IsSequence() || item.size() != 2) throw FileError(path, "markers.centres: expected [x, y] pairs");
+    centres.emplace_back(number_at(item[0], "markers.centres", path), number_at(item[1], "markers.centres", path));
+  }
+  return centres;
+}
+
+/// The `markers:` map (DATASET.md); every key but `dictionary` and `size` is required.
+MarkerLayout read_markers(const YAML::Node& node, const std::string& path) {
+  if (!node.IsMap()) throw FileError(path, "markers: expected a map (dictionary, size, ids, centres)");
+  MarkerLayout layout;
+  layout.ids.clear();
+  layout.centres.clear();
+  if (yaml::has_key(node, "dictionary")) {
+    if (!node["dictionary"].IsScalar()) throw FileError(path, "markers.dictionary: expected a name like DICT_6X6_250");
+    layout.dictionary = node["dictionary"].Scalar();
+  }
+  if (yaml::has_key(node, "size")) layout.size = number_at(node["size"], "markers.size", path);
+  if (!yaml::has_key(node, "ids")) throw FileError(path, "markers.ids: missing");
+  if (!yaml::has_key(node, "centres")) throw FileError(path, "markers.centres: missing");
+  layout.ids = read_ids(node["ids"], path);
+  layout.centres = read_centres(node["centres"], path);
+  return layout;
+}
+
+void emit_markers(YAML::Emitter& out, const MarkerLayout& m) {
+  out << YAML::Key << "markers" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "dictionary" << YAML::Value << m.dictionary;
+  out << YAML::Key << "size" << YAML::Value << yaml::format_number(m.size) << YAML::Comment("side of the black square");
+  out << YAML::Key << "ids" << YAML::Value << YAML::Flow << m.ids;
+  out << YAML::Key << "centres" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const Eigen::Vector2d& c : m.centres)
+    out << YAML::Flow << YAML::BeginSeq << yaml::format_number(c.x()) << yaml::format_number(c.y()) << YAML::EndSeq;
+  out << YAML::EndSeq << YAML::Comment("x y in the board frame");
+  out << YAML::EndMap;
+}
+
 }  // namespace
 
 Target read_target(const std::string& path) {
@@ -38,6 +103,7 @@ Target read_target(const std::string& path) {
   for (const Field& field : kFields)
     if (yaml::has_key(root, field.key))
       target.*field.member = yaml::read_double(root, field.key, path);
+  if (yaml::has_key(root, "markers")) target.markers = read_markers(root["markers"], path);
   try {
     target.validate();
   } catch (const ParamError& e) {
@@ -59,6 +125,7 @@ void write_target(const std::string& path, const Target& target) {
     out << YAML::Key << field.key << YAML::Value << yaml::format_number(target.*field.member);
     if (field.comment) out << YAML::Comment(field.comment);
   }
+  if (target.markers) emit_markers(out, *target.markers);
   out << YAML::EndMap;
   detail::write_file_atomically(
       path, "# Calibration board, lengths in metres (DATASET.md).\n" + yaml::document_text(out));

@@ -89,7 +89,8 @@ std::vector<std::string> MultiPoseSimulator::warnings() const { return impl_->wa
 
 void MultiPoseSimulator::write(const std::string& folder, const ProgressCallback& progress) const {
   const Impl& s = *impl_;
-  const io::DatasetWriter writer(folder, cameras(), s.config.base.target);
+  const io::DatasetWriter writer(folder, cameras(), s.config.base.target,
+                                 s.config.base.mono ? io::CameraLayout::Mono : io::CameraLayout::Stereo);
   writer.write_ground_truth(T_lidar_camera());
   const DatasetSimulator& first = *s.simulators.front();
   detail::write_scene_record(folder + "/scene.yaml", first.config(), first.board_pose(), first.scene(),

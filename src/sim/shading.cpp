@@ -14,6 +14,10 @@ int surface_key(const Hit& hit, bool shadowed) {
 /// [m] Shadow rays start this far off the surface so they do not hit it again.
 constexpr double kShadowOffset = 1e-5;
 
+/// Reflectance of the printed markers: matte black ink on white paper.
+constexpr double kInkBlack = 0.04;
+constexpr double kPaperWhite = 0.85;
+
 }  // namespace
 
 Shader::Shader(const RayCaster& caster, const Appearance& appearance, std::uint64_t texture_seed,
@@ -21,11 +25,19 @@ Shader::Shader(const RayCaster& caster, const Appearance& appearance, std::uint6
     : caster_(caster),
       look_(appearance),
       materials_(appearance, texture_seed),
+      markers_(caster.scene().target),
       channels_(channels),
       pixel_angle_(pixel_angle) {}
 
 bool Shader::in_shadow(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) const {
   return caster_.cast(point + kShadowOffset * normal, look_.to_light).hit();
+}
+
+int Shader::printed_cell(const Hit& hit) const {
+  if (markers_.empty() || hit.surface != SurfaceId::Board ||
+      hit.part != static_cast<std::uint8_t>(BoardPart::Front))
+    return -1;
+  return markers_.cell(hit.uv);
 }
 
 Sample Shader::shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const {
@@ -41,11 +53,15 @@ Sample Shader::shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& direc
     if (n.dot(direction) > 0.0) n = -n;  // the side facing the viewer
     const double facing = std::max(0.1, -n.dot(direction));
     albedo = materials_.surface(hit, hit.t * pixel_angle_ / facing);
+    const int marker_cell = printed_cell(hit);
+    if (marker_cell >= 0) albedo = Albedo{marker_cell ? kInkBlack : kPaperWhite, Eigen::Array3d::Ones()};
     const double lambert = std::max(0.0, n.dot(look_.to_light));
     const bool shadowed =
         look_.shadows && lambert > 0.0 && in_shadow(origin + hit.t * direction, n);
     light = look_.ambient + (1.0 - look_.ambient) * (shadowed ? 0.0 : lambert);
-    sample.key = surface_key(hit, shadowed);
+    // Marker cells get keys of their own, so the renderer anti-aliases their
+    // edges like the board's outline (the corners must be sharp to sub-pixel).
+    sample.key = surface_key(hit, shadowed) + (marker_cell + 1) * 1024;
   }
   if (channels_ == 1) {
     sample.value[0] = albedo.gray * light;

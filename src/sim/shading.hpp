@@ -6,6 +6,7 @@
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/ray_caster.hpp>
 
+#include "sim/marker_texture.hpp"
 #include "sim/materials.hpp"
 
 #include <array>
@@ -30,10 +31,13 @@ class Shader {
 
  private:
   bool in_shadow(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) const;
+  /// The marker cell printed where `hit` is (MarkerTexture::cell), -1 for none.
+  int printed_cell(const Hit& hit) const;
 
   const RayCaster& caster_;
   Appearance look_;
   Materials materials_;
+  MarkerTexture markers_;
   int channels_;
   double pixel_angle_;
 };

@@ -42,6 +42,8 @@ void SimulationConfig::validate() const {
   if (!(noise_factor >= 0.0 && noise_factor <= 100.0)) throw ParamError("noise_factor", "must be 0..100");
   if (threads < 0) throw ParamError("threads", "must be >= 0 (0 = all cores)");
   target.validate();
+  if (mono && !target.markers)
+    throw ParamError("mono", "a mono camera finds the board by its markers: the target has none (target.markers)");
   rig.validate();
   appearance.validate();
 }
@@ -110,7 +112,10 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
   lidar_params.beam_footprint = c.lidar_quirks.beam_footprint;
   lidar_params.return_mode = c.lidar_quirks.return_mode;
   s.lidar = std::make_unique<LidarSimulator>(s.model, lidar_params);
-  s.clean = s.renderer->render(*s.caster);
+  if (c.mono)
+    s.clean.left = s.renderer->render_camera(*s.caster, 0);
+  else
+    s.clean = s.renderer->render(*s.caster);
 }
 
 DatasetSimulator::~DatasetSimulator() = default;
@@ -123,8 +128,13 @@ SimulatedFrame DatasetSimulator::frame(int index) const {
   const auto frame = static_cast<std::uint64_t>(index);
   SimulatedFrame out;
   out.lidar = sweep(index);
-  StereoImages images = s.renderer->add_noise(
-      s.clean, s.config.noise_factor, detail::hash_counters(s.config.seed, kImageStream), frame);
+  const std::uint64_t image_seed = detail::hash_counters(s.config.seed, kImageStream);
+  if (s.config.mono) {
+    // The left image's noise is the stereo dataset's, so both kinds of one config agree.
+    out.left = s.renderer->add_noise(s.clean.left, s.config.noise_factor, image_seed, frame, 0);
+    return out;
+  }
+  StereoImages images = s.renderer->add_noise(s.clean, s.config.noise_factor, image_seed, frame);
   out.left = std::move(images.left);
   out.right = std::move(images.right);
   return out;
@@ -138,7 +148,8 @@ LidarCloud DatasetSimulator::sweep(int index) const {
 
 void DatasetSimulator::write(const std::string& folder, const ProgressCallback& progress) const {
   const Impl& s = *impl_;
-  const io::DatasetWriter writer(folder, cameras(), s.config.target);
+  const io::DatasetWriter writer(folder, cameras(), s.config.target,
+                                 s.config.mono ? io::CameraLayout::Mono : io::CameraLayout::Stereo);
   writer.write_ground_truth(T_lidar_camera());
   detail::write_scene_record(folder + "/scene.yaml", s.config, s.pose, s.scene, s.model, s.placement);
   detail::write_frames(writer, s.config.frames, s.config.threads, [this](int i) { return frame(i); }, progress);

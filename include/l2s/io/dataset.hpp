@@ -16,12 +16,16 @@
 
 namespace l2s::io {
 
+/// Which cameras a dataset folder holds (DATASET.md v2): left and right, or
+/// the left alone (no right.yaml, no right/: a lidar-mono dataset).
+enum class CameraLayout { Stereo, Mono };
+
 /// One synchronised frame of both sensors.
 struct Frame {
   std::string stem;  ///< file stem shared by the three files, e.g. "000000"
   LidarCloud lidar;  ///< ring filled (recovered when the file had none), except for a ring-free scan: empty
   Image left;        ///< as stored (gray or BGR)
-  Image right;
+  Image right;       ///< empty for a mono dataset
   RingSource ring_source = RingSource::Field;  ///< where `lidar.ring` came from
   /// How the rings were found when the file had none (ring_source != Field):
   /// structure (rings or ring-free), doubts. Empty for RingSource::Field.
@@ -50,13 +54,19 @@ class L2S_EXPORT Dataset {
   /// With a `lidar2/` folder the dataset is lidar-lidar (DATASET.md): camera
   /// YAMLs and images are neither needed nor read, and stems must match
   /// between lidar/ and lidar2/ (else FileError naming the folder).
+  /// A folder with neither right.yaml nor right/ is a mono dataset (layout()
+  /// Mono: only left.yaml is read and checked, cameras().right stays empty);
+  /// one of the two without the other is a FileError naming the missing one.
   /// Stems are sorted; files whose names start with '.' or have another
   /// extension are not frames.
   static Dataset open(const std::string& folder);
 
   const std::string& folder() const { return folder_; }
-  /// The cameras; cameras().images says whether the images are raw or rectified.
+  /// The cameras; cameras().images says whether the images are raw or
+  /// rectified. A mono dataset's right camera is default-constructed (unused).
   const StereoCamera& cameras() const { return cameras_; }
+  CameraLayout layout() const { return layout_; }
+  bool mono() const { return layout_ == CameraLayout::Mono; }
   bool has_dataset_file() const { return has_dataset_file_; }  ///< dataset.yaml present
   /// What a user should know before trusting the folder (e.g. images declared
   /// rectified while a camera has distortion), one line each; the library
@@ -88,6 +98,7 @@ class L2S_EXPORT Dataset {
  private:
   std::string folder_;
   StereoCamera cameras_;
+  CameraLayout layout_ = CameraLayout::Stereo;
   Target target_;
   bool has_target_file_ = false;
   bool has_dataset_file_ = false;
@@ -105,15 +116,19 @@ class L2S_EXPORT DatasetWriter {
   /// Writes dataset.yaml (images: raw) for raw cameras; rectified ones need
   /// none (the default). Throws FileError when the pair does not fit its image
   /// kind (as read_stereo_camera checks) or a folder cannot be created,
-  /// ParamError for an impossible target.
-  DatasetWriter(const std::string& folder, const StereoCamera& cameras, const Target& target);
+  /// ParamError for an impossible target. A Mono layout writes the left
+  /// camera alone (cameras.right is ignored; a right.yaml left in the folder
+  /// by an earlier dataset is removed).
+  DatasetWriter(const std::string& folder, const StereoCamera& cameras, const Target& target,
+                CameraLayout layout = CameraLayout::Stereo);
 
   /// A lidar-lidar dataset: lidar/ and lidar2/ and target.yaml, no cameras.
   /// Its write() takes frame.lidar and frame.lidar2 (images are ignored).
   static DatasetWriter lidar_pair(const std::string& folder, const Target& target);
 
-  /// Writes lidar/STEM.pcd, left/STEM.png, right/STEM.png (an existing frame of
-  /// that stem is replaced). Throws ParamError when the stem is not a plain file
+  /// Writes lidar/STEM.pcd, left/STEM.png, right/STEM.png (no right image for
+  /// a Mono layout; lidar2/STEM.pcd alone beside lidar/ for a lidar pair; an
+  /// existing frame of that stem is replaced). Throws ParamError when the stem is not a plain file
   /// name or an image size differs from its camera.
   void write(const Frame& frame, PcdEncoding encoding = PcdEncoding::Binary) const;
   /// Writes ground_truth.yaml (key T_lidar_camera).
@@ -128,6 +143,7 @@ class L2S_EXPORT DatasetWriter {
   std::string folder_;
   StereoCamera cameras_;
   bool lidar_pair_ = false;  // lidar/ + lidar2/, no images
+  CameraLayout layout_ = CameraLayout::Stereo;
 };
 
 }  // namespace l2s::io

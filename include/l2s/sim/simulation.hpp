@@ -42,6 +42,10 @@ struct L2S_SIM_EXPORT SimulationConfig {
   // --- Camera side: the stereo rig and how the scene looks to it ---
   StereoRig rig;                 ///< image size, fov, baseline; lenses, mount, raw or rectified images
   Appearance appearance;         ///< materials, light and shadows, camera response, gray or colour
+  /// A lidar-mono dataset (DATASET.md v2): the rig's left camera alone, no
+  /// right.yaml or right/ (the right image is neither rendered nor written).
+  /// The target must carry markers (Target::markers).
+  bool mono = false;
 
   /// The ground truth of this config in the dataset's camera frame
   /// (DATASET.md): the setting's for raw images (the physical left camera)
@@ -66,7 +70,7 @@ struct L2S_SIM_EXPORT SimulationConfig {
 struct SimulatedFrame {
   LidarCloud lidar;  ///< lidar frame, with intensity and ring (no ring for ring-free lidars)
   Image left;        ///< 8-bit gray (BGR for a colour appearance); raw images when rig.images() is Raw
-  Image right;
+  Image right;       ///< empty for a mono config
   LidarCloud lidar2; ///< lidar-lidar datasets (LidarPairSimulator): the second lidar; images empty then
 };
 

@@ -101,7 +101,8 @@ io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::si
                                 frame.ring_recovery->structure == io::ScanStructure::RingFree)) {
       if (doubtful_rings++ == 0) first_doubt = frame.stem + ": " + frame.ring_recovery->summary();
     }
-    const FrameReport report = calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
+    const FrameReport report = dataset.mono() ? calibrator.add(frame.lidar, frame.left, frame.stem)
+                                              : calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
     if (verbose) print_frame_failure(report);
     progress.update(i + 1);
     last_frame = std::move(frame);
@@ -114,6 +115,8 @@ io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::si
 }
 
 void print_counts(const Calibrator::Result& result) {
+  for (const auto& note : result.notes)
+    if (!result.checked) std::printf("note      %s\n", note.c_str());
   std::printf("frames    %d: lidar found the board in %d, camera in %d\n", result.frames_added,
               result.lidar_frames, result.camera_frames);
   std::printf("time      %.1f ms/frame lidar, %.1f ms/frame camera\n",
@@ -190,7 +193,11 @@ int run_calibrate(const CalibrateOptions& options) {
   if (dataset.has_lidar2())  // DATASET.md: lidar/ with lidar2/ is lidar-lidar
     return calibrate_lidar_pair(dataset, {params, options.params_file.empty() ? options.preset : options.params_file,
                                           options.output, options.frames, options.verbose});
-  Calibrator calibrator(dataset.cameras(), dataset.target(), params);
+  // A dataset with the left camera alone is lidar-mono: the board by its markers.
+  Calibrator calibrator = dataset.mono()
+                              ? Calibrator(dataset.cameras().left, dataset.cameras().images, dataset.target(), params)
+                              : Calibrator(dataset.cameras(), dataset.target(), params);
+  if (dataset.mono()) std::printf("mono      left camera alone: board pose from its ArUco markers\n");
 
   const std::size_t count =
       options.frames > 0 ? std::min<std::size_t>(options.frames, dataset.size()) : dataset.size();

@@ -11,6 +11,7 @@
 #include <l2s/io/calibrator_yaml.hpp>
 #include <l2s/io/dataset.hpp>
 #include <l2s/io/image_io.hpp>
+#include <l2s/mono_board_detector.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -70,6 +71,44 @@ std::string write_image(const fs::path& folder, const std::string& name, const I
   return path;
 }
 
+/// A mono dataset's camera side: the markers found, the pose's fit, the centres.
+BranchReport detect_mono(const io::Dataset& dataset, const io::Frame& frame, const Calibrator::Params& params) {
+  const MonoBoardDetector detector(dataset.cameras().left, dataset.cameras().images, dataset.target(), params.mono);
+  const MonoBoardDetector::Result result = detector.detect(frame.left);
+  std::printf("camera  mono (%s images): %zu of the target's %d markers found",
+              dataset.cameras().images == ImageKind::Raw ? "raw" : "rectified", result.markers.size(),
+              result.markers_expected);
+  for (std::size_t i = 0; i < result.markers.size(); ++i) std::printf("%s%d", i ? ", " : " (ids ", result.markers[i].id);
+  std::printf("%s\n", result.markers.empty() ? "" : ")");
+  BranchReport report;
+  report.found = result.found;
+  report.failed_stage = result.failed_stage;
+  report.reason = result.reason;
+  report.centers = result.centers;
+  if (!result.markers.empty()) std::printf("        marker corners rms %.3f px under the PnP pose\n", result.marker_rms_px);
+  if (result.rim_refined) std::printf("        refined with the hole rims: rms %.3f px\n", result.rim_rms_px);
+  if (!result.note.empty()) std::printf("        note: %s\n", result.note.c_str());
+  if (result.found)
+    for (int h = 0; h < 4; ++h)
+      std::printf("        %s  (%8.4f, %8.4f, %8.4f) m\n", hole_name(static_cast<Hole>(h)), result.centers[h].x(),
+                  result.centers[h].y(), result.centers[h].z());
+  std::printf("\n");
+  return report;
+}
+
+/// A stereo board that carries markers: the left image alone, by its
+/// markers, as an independent check of the stereo branch's centres.
+void cross_check_with_markers(const io::Dataset& dataset, const io::Frame& frame, const Calibrator::Params& params,
+                              const BranchReport& stereo) {
+  std::printf("cross-check: the board's markers in the left image alone\n");
+  const BranchReport mono = detect_mono(dataset, frame, params);
+  if (!mono.found || !stereo.found) return;
+  std::printf("        markers - stereo:");
+  for (int h = 0; h < 4; ++h)
+    std::printf(" %s %.1f mm", hole_name(static_cast<Hole>(h)), (mono.centers[h] - stereo.centers[h]).norm() * 1e3);
+  std::printf("\n\n");
+}
+
 int run_detect(const DetectOptions& options) {
   const auto dataset = open_dataset_warning(options.dataset);
   const Calibrator::Params params = params_from(options.preset, options.params_file);
@@ -106,7 +145,10 @@ int run_detect(const DetectOptions& options) {
       failures.push_back("lidar: " + inspection.report.failed_stage + ": " +
                          inspection.report.reason);
   }
-  if (camera) {
+  if (camera && dataset.mono()) {
+    const BranchReport report = detect_mono(dataset, frame, params);
+    if (!report.found) failures.push_back("camera: " + report.failed_stage + ": " + report.reason);
+  } else if (camera) {
     const CameraInspection inspection =
         inspect_camera(frame.left, frame.right, dataset.cameras(), target, params);
     std::printf("%s\n", describe(inspection, params, dataset.cameras()).c_str());
@@ -118,6 +160,7 @@ int run_detect(const DetectOptions& options) {
     if (!inspection.report.found)
       failures.push_back("camera: " + inspection.report.failed_stage + ": " +
                          inspection.report.reason);
+    if (target.markers) cross_check_with_markers(dataset, frame, params, inspection.report);
   }
 
   const char* prefix = "wrote   ";

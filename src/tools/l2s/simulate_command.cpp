@@ -38,6 +38,8 @@ struct SimulateOptions {
   int threads = 0;
   bool lenient = false;
   bool overwrite = false;
+  bool mono = false;     // the left camera alone: a lidar-mono dataset
+  bool markers = false;  // the default markers on the board (mono: implied when the board has none)
 
   // --- Camera side: the rig and the scene's look (override a scene file) ---
   int width = 1280;
@@ -120,7 +122,7 @@ int write_dataset(const sim::DatasetSimulator& simulator, const SimulateOptions&
               config.frames, config.lidar.c_str(), config.lidar_quirks.any() ? " with quirks" : "",
               config.setting_index, config.noise_factor, static_cast<unsigned long long>(config.seed));
   std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
-  std::printf("cameras %dx%d, %s images\n", config.rig.width, config.rig.height,
+  std::printf("%s %dx%d, %s images\n", config.mono ? "mono camera" : "cameras", config.rig.width, config.rig.height,
               config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
   return 0;
 }
@@ -196,6 +198,10 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   if (options.scene_file.empty() || given("--seed")) config.seed = options.seed;
   if (options.scene_file.empty() || given("--board")) config.target = Target::preset(options.board);
   if (!options.target_file.empty()) config.target = io::read_target(options.target_file);
+  // A mono camera needs markers; a board without them gets the default ones.
+  if ((options.markers || options.mono) && !config.target.markers)
+    config.target.markers = MarkerLayout::corners_default();
+  if (options.mono) config.mono = true;
   if (given("--threads")) config.threads = options.threads;
   if (options.lenient) config.strict_placement = false;
   apply_camera_options(options, command, &config);
@@ -221,7 +227,7 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
       ->check(CLI::Range(0.0, 100.0));
   command->add_option("--seed", options->seed, "random seed (same seed, same bytes)");
   command->add_option("--board", options->board, "board preset")
-      ->check(CLI::IsMember({"default", "paper2017"}));
+      ->check(CLI::IsMember({"default", "markers", "paper2017"}));
   command->add_option("--target", options->target_file, "board geometry from a target.yaml")
       ->check(CLI::ExistingFile);
   command->add_option("--scene", options->scene_file, "scene file: custom pose, board, placement")
@@ -233,6 +239,11 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)");
   command->add_flag("--lenient", options->lenient, "warn instead of failing when the placement check fails");
   command->add_flag("--overwrite", options->overwrite, "replace an existing dataset in out_dir");
+  command->add_flag("--mono", options->mono,
+                    "a lidar-mono dataset: the left camera alone; the board gets the default ArUco markers "
+                    "unless its target.yaml has markers");
+  command->add_flag("--markers", options->markers,
+                    "print the default ArUco markers (four 0.2 m DICT_6X6_250 near the corners) on the board");
   add_camera_options(command, options.get());
   command->add_option("--poses", options->poses,
                       "board poses spread over the shared view, --frames each, with moving frames between (1..5)")

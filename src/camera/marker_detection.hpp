@@ -1,0 +1,27 @@
+#pragma once
+// The target's ArUco markers in one image, and the board pose they give.
+
+#include <l2s/mono_board_detector.hpp>
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace l2s::detail {
+
+/// The markers of `layout` found in `gray` (cv::aruco, sub-pixel corners),
+/// in the order of layout.ids; ids not in the layout are dropped, and an id
+/// found twice is dropped altogether (which one is the board's is unknown).
+std::vector<MonoBoardDetector::Marker> find_target_markers(const cv::Mat& gray, const MarkerLayout& layout);
+
+/// Board pose from marker corners (in pixels of the ideal camera `camera`:
+/// P, no distortion) by PnP over all their corners.
+struct MarkerPose {
+  bool found = false;
+  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();
+  double rms_px = 0.0;  ///< [px] corner reprojection rms
+};
+MarkerPose pose_from_markers(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
+                             const CameraInfo& camera);
+
+}  // namespace l2s::detail
