@@ -35,6 +35,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,10 @@ struct BranchReport {
   int markers = 0;                ///< mono camera: the target's ArUco markers found in the image
   int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
+  /// Lidar: the board plane its centres lie on (sensor frame, normal towards
+  /// the sensor), valid when found; it rests on every board return, far more
+  /// than the holes' edges do.
+  std::optional<Plane> board_plane;
   double milliseconds = 0.0;      ///< [ms] wall time of the branch
   /// What the calibration check needs of the pair: set by
   /// Calibrator::camera_branch() (so add(lidar, camera) can check), kept by
@@ -82,6 +87,7 @@ struct PoseReport {
   bool used = false;     ///< in the joint fit
   std::string reason;    ///< why not, when !used (centres do not cluster, rejected as an outlier)
   double rms = 0.0;      ///< [m] residual rms of its centres under the result (NaN when they did not cluster)
+  std::optional<Plane> lidar_plane;  ///< mean board plane of its lidar detections (normal towards the lidar)
 };
 
 /// The facade: one per rig and calibration run (see thread safety above).
@@ -119,6 +125,11 @@ class L2S_EXPORT Calibrator {
     Registrar::Params registrar;
     PoseGrouper::Params poses;  ///< how frames are grouped into board poses (the board static within each)
     JointRegistrar::Params joint;  ///< the fit over all poses: outlying poses, when to suggest another
+    /// With two or more used poses, refine the centre fit with each pose's
+    /// board planes (the lidar's from all its board returns, the camera's
+    /// through its centres): a ring lidar's centres carry a bias per pose
+    /// from where its rings cross the holes, its board plane does not.
+    bool refine_with_board_planes = true;
     bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
     // The scene-level check of the result (calibration_check.hpp).
     bool check_result = true;  ///< result() checks the transform against the scene and fills Result::quality

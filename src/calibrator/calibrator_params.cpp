@@ -65,6 +65,7 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   params.locate_board = false;  // one full-frame SGM pass, as the paper
   params.accumulator.cluster_tolerance = 0.02;
   params.accumulator.estimator = CenterAccumulator::Estimator::Mean;
+  params.refine_with_board_planes = false;  // the paper registers the centres alone
   return params;
 }
 

@@ -166,6 +166,9 @@ BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Cal
   report.hole_radius = best->circles.radius;
   report.found = true;
   report.centers = best->circles.centers;
+  Plane plane = planes.candidates[best->candidate].plane;
+  if (plane.offset() < 0.0) plane = Plane(-plane.normal(), -plane.offset());  // normal towards the sensor
+  report.board_plane = plane;
   return report;
 }
 

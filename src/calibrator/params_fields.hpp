@@ -275,6 +275,7 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("registrar", [&](V& s) { visit(s, p.registrar); });
   v.section("poses", [&](V& s) { visit(s, p.poses); });
   v.section("joint", [&](V& s) { visit(s, p.joint); });
+  v.field("refine_with_board_planes", p.refine_with_board_planes);
   v.field("parallel_branches", p.parallel_branches);
   v.field("check_result", p.check_result);
   v.field("check_frames", p.check_frames);

@@ -7,6 +7,9 @@
 
 #include "calibrator/pose_registration.hpp"
 
+#include "calibrator/board_plane_refinement.hpp"
+#include "plane/plane_fit.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -61,7 +64,8 @@ std::size_t pose_of_frame(const std::vector<PoseGrouper::Pose>& poses, int f) {
 
 PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t index,
                       const std::vector<FrameCenters>& streams, const std::vector<bool>& sparse,
-                      const CenterAccumulator::Params& params, const StreamNames& names) {
+                      const CenterAccumulator::Params& params, const StreamNames& names,
+                      const std::vector<std::optional<Plane>>& planes) {
   const PoseGrouper::Pose& pose = poses[index];
   PoseReport report;
   report.first_frame = pose.first;
@@ -82,6 +86,10 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
     if (sparse[s])
       for (int f = 0; f < static_cast<int>(streams.size()); ++f)
         if (streams[f][s] && pose_of_frame(poses, f) == index) accumulators[s]->add(*streams[f][s]);
+  std::vector<Plane> lidar_planes;
+  for (int f : pose.frames)
+    if (!wrong(0, f) && f < static_cast<int>(planes.size()) && planes[f]) lidar_planes.push_back(*planes[f]);
+  if (!lidar_planes.empty()) report.lidar_plane = mean_plane(lidar_planes);
   report.lidar_centroids = lidar.estimate();
   report.camera_centroids = camera.estimate();
   if (!report.lidar_centroids.found)
@@ -105,6 +113,39 @@ Registrar::Result as_registration(const JointRegistrar::Result& joint) {
     r.residuals[h] = std::sqrt(sum / joint.used_count());
   }
   return r;
+}
+
+/// The camera's board plane of a pose: through its four clustered centres
+/// (which the rim fit puts on the board's front face), normal towards the camera.
+Plane camera_plane(const HoleCenters& centers) {
+  const std::vector<Eigen::Vector3d> points(centers.begin(), centers.end());
+  const Plane plane = fit_plane(points, {0, 1, 2, 3});
+  return plane.offset() < 0.0 ? Plane(-plane.normal(), -plane.offset()) : plane;
+}
+
+/// The joint centre fit refined with the board planes of the used poses
+/// (board_plane_refinement.hpp), when there are two or more. Residuals,
+/// uncertainty and the leave-one-pose-out shifts stay those of the centre
+/// fit. Measured on the nine settings (VLP-16, K = 1, 10 frames a pose,
+/// seed 1): 3 poses, median 2.1 -> 1.3 mm and 0.068 -> 0.034 deg; 1 pose,
+/// 1.4 -> 1.9 mm and 0.065 -> 0.060 deg. One pose's camera plane offset is
+/// then trusted beyond its accuracy, so a single pose keeps the centre fit.
+void refine_with_planes(Calibrator::Result& result) {
+  std::vector<BoardPoseObservation> poses;
+  for (const PoseReport& pose : result.poses)
+    if (pose.used && pose.lidar_plane)
+      poses.push_back({pose.lidar_centroids.centers, pose.camera_centroids.centers, *pose.lidar_plane,
+                       camera_plane(pose.camera_centroids.centers)});
+  if (poses.size() < 2) return;
+  const Eigen::Isometry3d refined = refine_with_board_planes(result.T_lidar_camera, poses);
+  const Eigen::Isometry3d moved = result.T_lidar_camera.inverse() * refined;
+  std::ostringstream note;
+  note.precision(2);
+  note << std::fixed << "refined with the board planes of " << poses.size() << " pose(s): moved "
+       << moved.translation().norm() * 1e3 << " mm, " << Eigen::AngleAxisd(moved.linear()).angle() * 180.0 / M_PI
+       << " deg";
+  result.notes.push_back(note.str());
+  result.T_lidar_camera = refined;
 }
 
 /// Fits the poses whose centres cluster on both sides and records the fit.
@@ -156,6 +197,7 @@ bool fit_poses(Calibrator::Result& result, const Calibrator::Params& params) {
   }
   result.registration = as_registration(result.joint);
   result.T_lidar_camera = result.joint.T_target_source;
+  if (params.refine_with_board_planes) refine_with_planes(result);
   return true;
 }
 
@@ -170,11 +212,14 @@ std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation&
 
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
                     const Calibrator::Params& params, Calibrator::Result& result) {
-  return register_pose_streams(observations(frames, late_lidar), {"lidar", "camera"}, params, result);
+  std::vector<std::optional<Plane>> lidar_planes;
+  for (const FrameReport& f : frames) lidar_planes.push_back(f.lidar.found ? f.lidar.board_plane : std::nullopt);
+  return register_pose_streams(observations(frames, late_lidar), {"lidar", "camera"}, params, result, lidar_planes);
 }
 
 bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
-                           const Calibrator::Params& params, Calibrator::Result& result) {
+                           const Calibrator::Params& params, Calibrator::Result& result,
+                           const std::vector<std::optional<Plane>>& lidar_planes) {
   const std::vector<bool> sparse = sparse_streams(streams);
   std::vector<FrameCenters> dense = streams;
   for (FrameCenters& f : dense)
@@ -184,7 +229,7 @@ bool register_pose_streams(const std::vector<FrameCenters>& streams, const Strea
   result.moving_frames = grouping.moving;
   result.notes.insert(result.notes.end(), grouping.notes.begin(), grouping.notes.end());
   for (std::size_t p = 0; p < grouping.poses.size(); ++p)
-    result.poses.push_back(accumulate(grouping.poses, p, streams, sparse, params.accumulator, names));
+    result.poses.push_back(accumulate(grouping.poses, p, streams, sparse, params.accumulator, names, lidar_planes));
   return fit_poses(result, params);
 }
 

@@ -26,8 +26,12 @@ using StreamNames = std::array<std::string, 2>;
 /// stream s in streams[f][s]; stream 0 is the target of the fit, stream 1 the
 /// source), e.g. two lidars. The result's lidar_* fields hold stream 0, its
 /// camera_* fields stream 1, T_lidar_camera the fitted T_stream0_stream1.
+/// `lidar_planes`: stream 0's board plane per frame, when known; with them
+/// (and params.refine_with_board_planes) the fit is refined with each used
+/// pose's planes, stream 1's through its centres.
 bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
-                           const Calibrator::Params& params, Calibrator::Result& result);
+                           const Calibrator::Params& params, Calibrator::Result& result,
+                           const std::vector<std::optional<Plane>>& lidar_planes = {});
 
 /// The joint fit of result.poses again with every pose's camera centres
 /// relabelled by `permutation` (the labels the scene prefers); updates the
