@@ -77,15 +77,7 @@ void write_lidar_pair_result(const std::string& path, const LidarPairCalibrator:
   const Eigen::Isometry3d& T = result.T_lidar_lidar2;
   YAML::Emitter out;
   out << YAML::BeginMap;
-  yaml::emit_transform(out, "T_lidar_lidar2", T);
-  yaml::emit_transform(out, "T_lidar2_lidar", T.inverse());
-  emit_pose_details(out, "lidar_lidar2", T);
-  emit_pose_details(out, "lidar2_lidar", T.inverse());
-  out << YAML::Key << "static_transform_publisher" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "parent_lidar_child_lidar2" << YAML::Value << static_transform_arguments(T, "lidar", "lidar2");
-  out << YAML::Key << "parent_lidar2_child_lidar" << YAML::Value
-      << static_transform_arguments(T.inverse(), "lidar2", "lidar");
-  out << YAML::EndMap;
+  emit_transforms(out, T, "lidar", "lidar2", "lidar", "lidar2");
   emit_summary(out, result, dataset, preset);
   emit_poses(out, result);
   out << YAML::Key << "frames" << YAML::Value << YAML::BeginSeq;

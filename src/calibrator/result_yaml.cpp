@@ -130,17 +130,7 @@ void write_calibration_result(const std::string& path, const Calibrator::Result&
   const Eigen::Isometry3d& T = result.T_lidar_camera;
   YAML::Emitter out;
   out << YAML::BeginMap;
-  yaml::emit_transform(out, "T_lidar_camera", T);
-  yaml::emit_transform(out, "T_camera_lidar", T.inverse());
-  emit_pose_details(out, "lidar_camera", T);
-  emit_pose_details(out, "camera_lidar", T.inverse());
-
-  out << YAML::Key << "static_transform_publisher" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "parent_lidar_child_camera" << YAML::Value
-      << static_transform_arguments(T, "lidar", "camera_left_optical");
-  out << YAML::Key << "parent_camera_child_lidar" << YAML::Value
-      << static_transform_arguments(T.inverse(), "camera_left_optical", "lidar");
-  out << YAML::EndMap;
+  emit_transforms(out, T, "lidar", "camera", "lidar", "camera_left_optical");
 
   out << YAML::Key << "calibration" << YAML::Value << YAML::BeginMap;
   if (!dataset.empty()) out << YAML::Key << "dataset" << YAML::Value << dataset;

@@ -48,6 +48,19 @@ std::string static_transform_arguments(const Eigen::Isometry3d& T_parent_child,
   return args.str();
 }
 
+void emit_transforms(YAML::Emitter& out, const Eigen::Isometry3d& T_a_b, const std::string& a, const std::string& b,
+                     const std::string& frame_a, const std::string& frame_b) {
+  yaml::emit_transform(out, "T_" + a + "_" + b, T_a_b);
+  yaml::emit_transform(out, "T_" + b + "_" + a, T_a_b.inverse());
+  emit_pose_details(out, a + "_" + b, T_a_b);
+  emit_pose_details(out, b + "_" + a, T_a_b.inverse());
+  out << YAML::Key << "static_transform_publisher" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "parent_" + a + "_child_" + b << YAML::Value << static_transform_arguments(T_a_b, frame_a, frame_b);
+  out << YAML::Key << "parent_" + b + "_child_" + a << YAML::Value
+      << static_transform_arguments(T_a_b.inverse(), frame_b, frame_a);
+  out << YAML::EndMap;
+}
+
 void emit_centers(YAML::Emitter& out, const std::string& key, const HoleCenters& centers) {
   out << YAML::Key << key << YAML::Value << YAML::BeginMap;
   for (int i = 0; i < 4; ++i) {

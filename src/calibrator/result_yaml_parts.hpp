@@ -22,6 +22,11 @@ void emit_pose_details(YAML::Emitter& out, const std::string& name, const Eigen:
 std::string static_transform_arguments(const Eigen::Isometry3d& T_parent_child, const std::string& parent,
                                        const std::string& child);
 
+/// The transform keys of a result: T_<a>_<b> and its inverse, each with its
+/// pose details, and the static_transform_publisher arguments both ways.
+/// `frame_a`, `frame_b`: the ROS frame names of the two sensors.
+void emit_transforms(YAML::Emitter& out, const Eigen::Isometry3d& T_a_b, const std::string& a, const std::string& b,
+                     const std::string& frame_a, const std::string& frame_b);
 /// `key`: the four hole centres by hole name.
 void emit_centers(YAML::Emitter& out, const std::string& key, const HoleCenters& centers);
 
