@@ -4,6 +4,7 @@
 // writes no result (unless --keep-failed); a suspect one warns loudly.
 
 #include "commands.hpp"
+#include "pose_printing.hpp"
 #include "progress_bar.hpp"
 
 #include <l2s/calibrator.hpp>
@@ -38,13 +39,6 @@ struct CalibrateOptions {
   bool verbose = false;
   bool keep_failed = false;
 };
-
-void print_pose(const char* label, const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d t = T.translation();
-  const Eigen::Vector3d rpy = roll_pitch_yaw(T.rotation());
-  std::printf("%-10s t = (%8.4f, %8.4f, %8.4f) m   rpy = (%8.4f, %8.4f, %8.4f) rad\n", label, t.x(),
-              t.y(), t.z(), rpy[0], rpy[1], rpy[2]);
-}
 
 void print_frame_failure(const FrameReport& frame) {
   for (const auto& [side, branch] : {std::pair{"lidar", &frame.lidar}, std::pair{"camera", &frame.camera}}) {
@@ -124,41 +118,6 @@ void print_counts(const Calibrator::Result& result) {
               result.camera_ms / std::max(1, result.frames_added));
 }
 
-/// The board poses: how many, which frames moved, which pose was left out.
-void print_poses(const Calibrator::Result& result) {
-  if (result.poses.size() <= 1 && result.moving_frames.empty()) return;
-  std::printf("poses     %zu found, %d used; %zu frames skipped while the board moved\n", result.poses.size(),
-              result.poses_used(), result.moving_frames.size());
-  for (std::size_t p = 0; p < result.poses.size(); ++p) {
-    const PoseReport& pose = result.poses[p];
-    std::printf("  pose %zu  frames %d-%d (%zu)", p, pose.first_frame, pose.last_frame, pose.frames.size());
-    if (std::isfinite(pose.rms)) std::printf("  rms %.2f mm", pose.rms * 1e3);
-    if (!pose.used) std::printf("  not used: %s", pose.reason.c_str());
-    std::printf("\n");
-  }
-}
-
-/// Per-DoF uncertainty, the leave-one-pose-out shifts and, for a poorly
-/// conditioned fit, the pose that would help most.
-void print_uncertainty(const Calibrator::Result& result) {
-  const FitUncertainty& u = result.joint.uncertainty;
-  if (!u.valid) return;
-  std::printf("uncertainty (1 sigma / 95 %%, from %d residual dof):\n ", u.dof);
-  for (int k = 0; k < 6; ++k) {
-    const double unit = k < 3 ? 1e3 : 180.0 / M_PI;
-    std::printf(" %s %.2f/%.2f %s", dof_names()[k], u.sigma[k] * unit, u.bound_95[k] * unit, k < 3 ? "mm" : "deg");
-  }
-  std::printf("\n");
-  for (std::size_t k = 0, used = 0; k < result.poses.size(); ++k) {
-    if (!result.poses[k].used || used >= result.joint.leave_one_out.size()) continue;
-    const auto& loo = result.joint.leave_one_out[used++];
-    std::printf("  without pose %zu: moves %.2f mm, %.3f deg\n", k, loo.translation * 1e3, loo.rotation * 180.0 / M_PI);
-  }
-  if (!u.suggestion.empty())
-    std::printf("advice    the fit is poorly conditioned (condition %.1f, weakest: %s): add a pose %s\n", u.condition,
-                u.weakest_summary.c_str(), u.suggestion.c_str());
-}
-
 /// Why the calibration failed. Without -v the user still needs the first
 /// reason per side to act on.
 void print_calibration_failure(const Calibrator::Result& result, bool verbose) {
@@ -177,7 +136,7 @@ void print_estimate(const io::Dataset& dataset, const Calibrator::Result& result
   print_pose("estimate", result.T_lidar_camera);
   std::printf("residual  rms %.2f mm over the hole centres of %d pose(s)\n", result.registration.rms * 1e3,
               std::max(1, result.poses_used()));
-  print_uncertainty(result);
+  print_uncertainty(result.joint, used_poses(result.poses));
   if (result.checked) print_quality(result);
   if (const auto truth = dataset.ground_truth()) {
     print_pose("truth", *truth);
@@ -204,7 +163,7 @@ int run_calibrate(const CalibrateOptions& options) {
   const io::Frame last_frame = add_frames(dataset, calibrator, count, options.verbose);
   const Calibrator::Result result = calibrator.result();
   print_counts(result);
-  print_poses(result);
+  if (result.poses.size() > 1 || !result.moving_frames.empty()) print_poses(result);
   if (!result.found) {
     print_calibration_failure(result, options.verbose);
     return 1;

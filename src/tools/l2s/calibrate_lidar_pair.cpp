@@ -3,6 +3,7 @@
 // its poses and uncertainty and the sanity check, and writes the result.
 
 #include "commands.hpp"
+#include "pose_printing.hpp"
 #include "progress_bar.hpp"
 
 #include <l2s/io/lidar_pair_yaml.hpp>
@@ -40,49 +41,11 @@ void add_frames(const io::Dataset& dataset, LidarPairCalibrator& calibrator, std
   progress.finish();
 }
 
-void print_pose(const char* label, const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d t = T.translation();
-  const Eigen::Vector3d rpy = roll_pitch_yaw(T.rotation());
-  std::printf("%-10s t = (%8.4f, %8.4f, %8.4f) m   rpy = (%8.4f, %8.4f, %8.4f) rad\n", label, t.x(), t.y(), t.z(),
-              rpy[0], rpy[1], rpy[2]);
-}
-
-void print_poses(const LidarPairCalibrator::Result& result) {
-  std::printf("poses     %zu found, %d used; %zu frames skipped while the board moved\n", result.poses.size(),
-              result.poses_used(), result.moving_frames.size());
-  for (std::size_t p = 0; p < result.poses.size(); ++p) {
-    const LidarPairPoseReport& pose = result.poses[p];
-    std::printf("  pose %zu  frames %d-%d (%zu)", p, pose.first_frame, pose.last_frame, pose.frames.size());
-    if (std::isfinite(pose.rms)) std::printf("  rms %.2f mm", pose.rms * 1e3);
-    if (!pose.used) std::printf("  not used: %s", pose.reason.c_str());
-    std::printf("\n");
-  }
-}
-
-void print_uncertainty(const LidarPairCalibrator::Result& result) {
-  const FitUncertainty& u = result.joint.uncertainty;
-  if (!u.valid) return;
-  std::printf("uncertainty (1 sigma / 95 %%, from %d residual dof):\n ", u.dof);
-  for (int k = 0; k < 6; ++k) {
-    const double unit = k < 3 ? 1e3 : 180.0 / M_PI;
-    std::printf(" %s %.2f/%.2f %s", dof_names()[k], u.sigma[k] * unit, u.bound_95[k] * unit, k < 3 ? "mm" : "deg");
-  }
-  std::printf("\n");
-  for (std::size_t k = 0, used = 0; k < result.poses.size(); ++k) {
-    if (!result.poses[k].used || used >= result.joint.leave_one_out.size()) continue;
-    const auto& loo = result.joint.leave_one_out[used++];
-    std::printf("  without pose %zu: moves %.2f mm, %.3f deg\n", k, loo.translation * 1e3, loo.rotation * 180.0 / M_PI);
-  }
-  if (!u.suggestion.empty())
-    std::printf("advice    the fit is poorly conditioned (condition %.1f, weakest: %s): add a pose %s\n", u.condition,
-                u.weakest_summary.c_str(), u.suggestion.c_str());
-}
-
 void print_estimate(const io::Dataset& dataset, const LidarPairCalibrator::Result& result) {
   print_pose("estimate", result.T_lidar_lidar2);
   std::printf("residual  rms %.2f mm over the hole centres of %d pose(s)\n", result.registration.rms * 1e3,
               std::max(1, result.poses_used()));
-  print_uncertainty(result);
+  print_uncertainty(result.joint, used_poses(result.poses));
   for (const auto& note : result.notes) std::printf("note      %s\n", note.c_str());
   std::printf("check     %s: largest pose rms %.2f mm\n", verdict_name(result.check.verdict),
               result.check.max_pose_rms * 1e3);
