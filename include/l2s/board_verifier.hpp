@@ -54,6 +54,11 @@ class L2S_EXPORT BoardVerifier {
     double min_rim_excess = 0.2;
     double confident_score = 0.5;   ///< a verified hypothesis scoring at least this ends the search, 0..1
     int max_hypotheses = 4;         ///< board-sized planes verified per frame at most, most board-like first, >= 1
+    /// Once one is verified, a later plane is tried only when its prior is at
+    /// least this share of the verified one's: pieces of a wall behind a
+    /// verified board (prior ~0.1 against ~0.9) cost a region's matching and
+    /// a failed hole search each, and never won on the simulated suite; 0 tries them all, 0..1
+    double challenger_prior = 0.5;
 
     void validate() const;  ///< throws ParamError naming the field
   };

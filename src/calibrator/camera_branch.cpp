@@ -75,9 +75,11 @@ class CameraHypothesisTester {
       stop(hypothesis, "duplicate", "a piece of the board already found on plane #" + std::to_string(same));
       return std::nullopt;
     }
-    const bool ok = collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis);
+    if (!(collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis))) {
+      if (!first_) first_ = std::move(attempt);
+      return std::nullopt;
+    }
     if (!first_) first_ = attempt;
-    if (!ok) return std::nullopt;
     attempt.T_camera_board = board_pose_from_centers(attempt.circles.centers, attempt.plane);
     boards_found_.push_back({attempt.candidate, attempt.T_camera_board});
     hypothesis.evidence = stereo_evidence(f_.left_gray, f_.right_gray, f_.cameras, attempt.T_camera_board,
@@ -98,7 +100,7 @@ class CameraHypothesisTester {
     return attempt;
   }
 
-  const std::optional<CameraAttempt>& first() const { return first_; }
+  std::optional<CameraAttempt>& first() { return first_; }
 
  private:
   bool stop(BoardHypothesis& hypothesis, const char* stage, const std::string& reason) {
@@ -190,15 +192,17 @@ class CameraHypothesisTester {
   std::vector<std::pair<int, Eigen::Isometry3d>> boards_found_;  ///< (candidate, T_camera_board) with four holes
 };
 
-void keep_stages(CameraInspection& t, const CameraAttempt& attempt) {
+/// Moves what `l2s detect` shows of the attempt into the trace (the region's
+/// cloud and board points are megabytes; the attempt is not needed after).
+void keep_stages(CameraInspection& t, CameraAttempt&& attempt) {
   t.candidate = attempt.candidate;
-  if (attempt.stereo) t.stereo = attempt.stereo;
-  t.board = attempt.board;
+  if (attempt.stereo) t.stereo = std::move(attempt.stereo);
+  t.board = std::move(attempt.board);
   t.board_plane = attempt.plane;
-  if (!attempt.board.points.empty()) t.edges = attempt.edges;
-  if (attempt.edges.found) t.circles = attempt.circles;
-  if (attempt.circles.found) t.T_camera_board_initial = attempt.T_camera_board;
-  t.refined = attempt.refined;
+  if (!t.board.points.empty()) t.edges = std::move(attempt.edges);
+  if (t.edges && t.edges->found) t.circles = std::move(attempt.circles);
+  if (t.circles && t.circles->found) t.T_camera_board_initial = attempt.T_camera_board;
+  t.refined = std::move(attempt.refined);
 }
 
 /// The candidates of the frame: located at low resolution, or segmented in
@@ -279,14 +283,13 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   if (!planes) return report;
 
   CameraHypothesisTester tester(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
-  const std::optional<CameraAttempt> best =
+  std::optional<CameraAttempt> best =
       search_hypotheses<CameraAttempt>(*planes, BoardVerifier(params.camera_verifier), t.hypotheses, tester);
   report.hypotheses = static_cast<int>(t.hypotheses.size());
   if (!best) {
-    if (tester.first()) keep_stages(t, *tester.first());
+    if (tester.first()) keep_stages(t, std::move(*tester.first()));
     return fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
   }
-  keep_stages(t, *best);
   report.plane_inliers = best->board.size();
   report.edge_points = best->edges.edges.size();
   report.fit_rms = best->circles.rms;
@@ -294,6 +297,7 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   report.centers = best->circles.centers;
   report.found = true;
   take_refined_centres(*best, report);
+  keep_stages(t, std::move(*best));
   if (setup.rectifier) {
     const Eigen::Isometry3d T_camera_rect = setup.rectifier->T_rect_camera().inverse();
     for (Eigen::Vector3d& c : report.centers) c = T_camera_rect * c;

@@ -116,9 +116,10 @@ void describe_hypotheses(std::string& out, const std::vector<BoardHypothesis>& h
   append(out, "  verify           %zu hypothesis(es) tried\n", hypotheses.size());
   append(out,
          "                   [%s: hole_margin %.3f m, min_hole_open %.2f, min_outline_open %.2f, "
-         "min_rim_support %.2f, min_rim_excess %.2f, min_samples %d, confident_score %.2f, max_hypotheses %d]\n",
+         "min_rim_support %.2f, min_rim_excess %.2f, min_samples %d, confident_score %.2f, max_hypotheses %d, "
+         "challenger_prior %.2f]\n",
          field, p.hole_margin, p.min_hole_open, p.min_outline_open, p.min_rim_support, p.min_rim_excess,
-         p.min_samples, p.confident_score, p.max_hypotheses);
+         p.min_samples, p.confident_score, p.max_hypotheses, p.challenger_prior);
   for (const BoardHypothesis& h : hypotheses) {
     const BoardEvidence& e = h.evidence;
     append(out, "    plane #%-2d (prior %.2f): %s%s: %s\n", h.candidate, h.prior,
@@ -214,8 +215,8 @@ void describe_located(std::string& out, const std::optional<StereoBoardLocator::
   for (const auto& r : l.regions)
     append(out, "    plane #%-2d      region x %d..%d, y %d..%d px, depth %.2f..%.2f m\n", r.candidate,
            r.roi.x, r.roi.x + r.roi.width - 1, r.roi.y, r.roi.y + r.roi.height - 1, r.min_depth, r.max_depth);
-  append(out, "                   [locator: coarse_width %.0f px, min_board_px %.0f, region_margin %.2f m, "
-         "depth_margin %.2f m]\n", p.coarse_width, p.min_board_px, p.region_margin, p.depth_margin);
+  append(out, "                   [locator: coarse_width %.0f px, min_board_px %.0f, coarse_stride %d, region_margin %.2f m, "
+         "depth_margin %.2f m]\n", p.coarse_width, p.min_board_px, p.coarse_stride, p.region_margin, p.depth_margin);
 }
 
 void describe_edges(std::string& out, const std::optional<EdgeFilter::Result>& edges, const EdgeFilter::Params& p) {

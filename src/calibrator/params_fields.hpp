@@ -88,6 +88,7 @@ void visit(V& v, BoardVerifier::Params& p) {
   v.field("min_rim_excess", p.min_rim_excess);
   v.field("confident_score", p.confident_score);
   v.field("max_hypotheses", p.max_hypotheses);
+  v.field("challenger_prior", p.challenger_prior);
 }
 
 template <class V>
@@ -244,6 +245,16 @@ void visit(V& v, CalibrationCheck::Params& p) {
 }
 
 template <class V>
+void visit(V& v, StereoBoardLocator::Params& p) {
+  v.field("coarse_width", p.coarse_width);
+  v.field("min_board_px", p.min_board_px);
+  v.field("coarse_stride", p.coarse_stride);
+  v.section("plane", [&](V& s) { visit(s, p.plane); });
+  v.field("region_margin", p.region_margin);
+  v.field("depth_margin", p.depth_margin);
+}
+
+template <class V>
 void visit(V& v, MonoBoardDetector::Params& p) {
   v.field("min_markers", p.min_markers);
   v.field("max_marker_rms_px", p.max_marker_rms_px);
@@ -264,6 +275,8 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("lidar_verifier", [&](V& s) { visit(s, p.lidar_verifier); });
   v.section("stereo", [&](V& s) { visit(s, p.stereo); });
   v.section("camera_pass_through", [&](V& s) { visit(s, p.camera_pass_through); });
+  v.field("locate_board", p.locate_board);
+  v.section("locator", [&](V& s) { visit(s, p.locator); });
   v.section("camera_plane", [&](V& s) { visit(s, p.camera_plane); });
   v.section("edges", [&](V& s) { visit(s, p.edges); });
   v.section("camera_circles", [&](V& s) { visit(s, p.camera_circles); });

@@ -45,6 +45,7 @@ PlaneSegmenter::Params StereoBoardLocator::Params::coarse_plane() {
 void StereoBoardLocator::Params::validate() const {
   if (!(coarse_width >= 160.0)) throw ParamError("coarse_width", "must be >= 160 px");
   if (!(min_board_px > 0.0)) throw ParamError("min_board_px", "must be > 0 px");
+  if (coarse_stride < 1) throw ParamError("coarse_stride", "must be >= 1");
   if (!(region_margin >= 0.0)) throw ParamError("region_margin", "must be >= 0 m");
   if (!(depth_margin > 0.0)) throw ParamError("depth_margin", "must be > 0 m");
   try {
@@ -74,7 +75,7 @@ StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const I
   coarse.downscale = result.scale;
   coarse.row_downscale = 1.0;
   coarse.roi = PixelRect{};
-  coarse.stride = 1;
+  coarse.stride = params_.coarse_stride;
   result.stereo = StereoMatcher(coarse).match(left, right, cameras);
   if (!result.stereo.found) {
     result.reason = "coarse stereo: " + result.stereo.reason;

@@ -76,7 +76,7 @@ std::vector<Placement> voted_placements(const std::vector<Eigen::Vector2d>& cent
     for (const Eigen::Vector2d& c : centres)
       for (const Eigen::Vector2d& h : rotated) grid.vote(c - h);
     grid.smooth();
-    const auto peaks = grid.peaks();
+    const auto peaks = grid.peaks(kPeaksPerAngle);
     for (std::size_t i = 0; i < peaks.size() && i < kPeaksPerAngle; ++i) tops.push_back({peaks[i].first, angle, peaks[i].second});
   }
   std::sort(tops.begin(), tops.end(), [](const Placement& a, const Placement& b) { return a.votes > b.votes; });

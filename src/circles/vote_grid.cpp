@@ -41,8 +41,8 @@ void VoteGrid::smooth() {
   votes_.swap(scratch_);
 }
 
-std::vector<std::pair<float, Eigen::Vector2d>> VoteGrid::peaks() const {
-  std::vector<std::pair<float, Eigen::Vector2d>> out;
+std::vector<std::pair<float, Eigen::Vector2d>> VoteGrid::peaks(std::size_t max_peaks) const {
+  std::vector<std::pair<float, std::size_t>> found;  // (votes, cell index)
   for (int y = 1; y + 1 < height_; ++y)
     for (int x = 1; x + 1 < width_; ++x) {
       const float v = votes_[index(x, y)];
@@ -52,9 +52,18 @@ std::vector<std::pair<float, Eigen::Vector2d>> VoteGrid::peaks() const {
         for (int dx = -1; dx <= 1 && peak; ++dx)
           if ((dx || dy) && (votes_[index(x + dx, y + dy)] > v || (votes_[index(x + dx, y + dy)] == v && dy * 3 + dx < 0)))
             peak = false;
-      if (peak) out.emplace_back(v, origin_ + cell_ * Eigen::Vector2d(x + 0.5, y + 0.5));
+      if (peak) found.emplace_back(v, index(x, y));
     }
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const auto stronger = [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); };
+  const std::size_t kept = std::min(max_peaks, found.size());
+  std::partial_sort(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(kept), found.end(), stronger);
+  std::vector<std::pair<float, Eigen::Vector2d>> out;
+  out.reserve(kept);
+  for (std::size_t i = 0; i < kept; ++i) {
+    const auto [v, cell] = found[i];
+    const int x = static_cast<int>(cell % static_cast<std::size_t>(width_)), y = static_cast<int>(cell / static_cast<std::size_t>(width_));
+    out.emplace_back(v, origin_ + cell_ * Eigen::Vector2d(x + 0.5, y + 0.5));
+  }
   return out;
 }
 

@@ -3,6 +3,7 @@
 // hole-pattern Hough transforms both splat votes on it and read its peaks.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -21,8 +22,11 @@ class VoteGrid {
   void vote(const Eigen::Vector2d& c, float weight = 1.0f);
   /// 3x3 box sum: a rim's votes spread over neighbouring cells with noise.
   void smooth();
-  /// Local maxima (strict over the 8 neighbours), strongest first.
-  std::vector<std::pair<float, Eigen::Vector2d>> peaks() const;
+  /// The `max_peaks` strongest local maxima (strict over the 8 neighbours),
+  /// strongest first; equal ones in scan order. A smoothed grid of scattered
+  /// votes has thousands of small maxima; sorting them all cost the pattern
+  /// search (100 angles) more than its votes.
+  std::vector<std::pair<float, Eigen::Vector2d>> peaks(std::size_t max_peaks = SIZE_MAX) const;
 
  private:
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }

@@ -31,6 +31,7 @@ void BoardVerifier::Params::validate() const {
   if (!(min_rim_support >= 0.0 && min_rim_support <= 1.0)) throw ParamError("min_rim_support", "must be in [0, 1]");
   if (!(min_rim_excess >= 0.0 && min_rim_excess <= 1.0)) throw ParamError("min_rim_excess", "must be in [0, 1]");
   if (max_hypotheses < 1) throw ParamError("max_hypotheses", "must be >= 1");
+  if (!(challenger_prior >= 0.0 && challenger_prior <= 1.0)) throw ParamError("challenger_prior", "must be in [0, 1]");
 }
 
 BoardVerifier::BoardVerifier() : BoardVerifier(Params{}) {}

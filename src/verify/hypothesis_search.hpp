@@ -44,8 +44,12 @@ std::optional<Outcome> search_hypotheses(const PlaneSegmenter::Result& planes, c
   int best_index = -1;
   const int tries = std::min<int>(static_cast<int>(planes.ranking.size()), verifier.params().max_hypotheses);
   for (int k = 0; k < tries; ++k) {
-    // Oversized patches are last resorts: not tried once a board-sized one was verified.
-    if (best_index >= 0 && planes.candidates[planes.ranking[k]].oversized) break;
+    // Oversized patches are last resorts: not tried once a board-sized one was
+    // verified; nor are planes far less board-like than the verified one.
+    if (best_index >= 0) {
+      const PlaneCandidate& next = planes.candidates[planes.ranking[k]];
+      if (next.oversized || next.prior < verifier.params().challenger_prior * log[best_index].prior) break;
+    }
     BoardHypothesis hypothesis;
     hypothesis.candidate = planes.ranking[k];
     hypothesis.prior = planes.candidates[hypothesis.candidate].prior;
