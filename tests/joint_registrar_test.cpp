@@ -105,10 +105,12 @@ TEST(JointRegistrar, UncertaintyCoversTheTrueError) {
   const Eigen::Vector3d rpy_true = roll_pitch_yaw(truth().rotation());
   const int runs = 300;
   std::array<int, 6> covered{};
+  JointRegistrar::Params noise_only;  // no error shared by a pose's centres here
+  noise_only.pose_bias_translation = noise_only.pose_bias_rotation = 0.0;
   for (int run = 0; run < runs; ++run) {
     const std::vector<PosePair> poses = {board({3.0, 0.1, 0.0}, 0.3, rng, 0.003),
                                          board({4.0, -0.8, 0.2}, -0.2, rng, 0.003)};
-    const JointRegistrar::Result result = JointRegistrar().estimate(poses);
+    const JointRegistrar::Result result = JointRegistrar(noise_only).estimate(poses);
     ASSERT_TRUE(result.uncertainty.valid);
     const Eigen::Vector3d dt = result.T_target_source.translation() - truth().translation();
     const Eigen::Vector3d dr = roll_pitch_yaw(result.T_target_source.rotation()) - rpy_true;
@@ -138,6 +140,7 @@ TEST(JointRegistrar, JackknifeOverPosesCoversErrorsAPoseShares) {
     }
     JointRegistrar::Params keep_all;  // offsets this large relative to the noise may look like an outlier
     keep_all.outlier_ratio = 1e9;
+    keep_all.pose_bias_translation = keep_all.pose_bias_rotation = 0.0;  // the jackknife alone
     const JointRegistrar::Result result = JointRegistrar(keep_all).estimate(poses);
     ASSERT_EQ(result.used_count(), 5);
     const FitUncertainty& u = result.uncertainty;
@@ -151,6 +154,49 @@ TEST(JointRegistrar, JackknifeOverPosesCoversErrorsAPoseShares) {
   }
   EXPECT_GE(covered, 0.9 * 6 * runs);
   EXPECT_LT(covered_by_residuals, 0.8 * 6 * runs);  // the residuals alone would not
+}
+
+/// The pose's centres in the camera frame moved by a rigid motion about their
+/// centroid: a depth or tilt bias of that pose's detection.
+void move_rigidly(PosePair& pose, const Eigen::Vector3d& shift, const Eigen::Vector3d& turn) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : pose.source) c += p / 4.0;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix();
+  for (auto& p : pose.source) p = c + shift + R * (p - c);
+}
+
+TEST(JointRegistrar, ErrorsAPoseSharesAreCoveredWithOneOrTwoPoses) {
+  // With one or two poses there is no jackknife; the shared error the
+  // params describe (here exactly the one drawn) must be in the bound.
+  const JointRegistrar::Params params;
+  std::normal_distribution<double> shift(0.0, params.pose_bias_translation), turn(0.0, params.pose_bias_rotation);
+  const Eigen::Vector3d rpy_true = roll_pitch_yaw(truth().rotation());
+  for (int poses_count : {1, 2}) {
+    std::mt19937 rng(20 + poses_count);
+    const int runs = 300;
+    int covered = 0, covered_by_residuals = 0;
+    for (int run = 0; run < runs; ++run) {
+      // Centres averaged over many frames: little noise, the shared error dominates.
+      std::vector<PosePair> poses = {board({3.0, 0.1, 0.0}, 0.3, rng, 0.0001)};
+      if (poses_count == 2) poses.push_back(board({4.0, -0.8, 0.2}, -0.2, rng, 0.0001));
+      for (auto& pose : poses)
+        move_rigidly(pose, {shift(rng), shift(rng), shift(rng)}, {turn(rng), turn(rng), turn(rng)});
+      const JointRegistrar::Result result = JointRegistrar(params).estimate(poses);
+      ASSERT_TRUE(result.uncertainty.valid);
+      const FitUncertainty& u = result.uncertainty;
+      const Eigen::Vector3d dt = result.T_target_source.translation() - truth().translation();
+      const Eigen::Vector3d dr = roll_pitch_yaw(result.T_target_source.rotation()) - rpy_true;
+      for (int k = 0; k < 6; ++k) {
+        const double error = std::abs(k < 3 ? dt[k] : dr[k - 3]);
+        covered += error <= u.bound_95[k];
+        const double residual_sigma = std::sqrt(u.sigma[k] * u.sigma[k] - u.sigma_shared[k] * u.sigma_shared[k]);
+        covered_by_residuals += error <= student_t_95(u.dof) * residual_sigma;
+      }
+    }
+    EXPECT_GE(covered, 0.92 * 6 * runs) << poses_count << " pose(s)";
+    EXPECT_LE(covered, 0.99 * 6 * runs) << poses_count << " pose(s): not vacuously wide";
+    EXPECT_LT(covered_by_residuals, 0.8 * 6 * runs) << poses_count << " pose(s): the residuals alone would not";
+  }
 }
 
 TEST(JointRegistrar, SuggestsAPoseOnlyWhenPoorlyConditioned) {
@@ -181,6 +227,9 @@ TEST(JointRegistrar, ValidatesParams) {
   EXPECT_THROW(JointRegistrar{p}, ParamError);
   p = {};
   p.min_poses_to_reject = 2;
+  EXPECT_THROW(JointRegistrar{p}, ParamError);
+  p = {};
+  p.pose_bias_rotation = -0.001;
   EXPECT_THROW(JointRegistrar{p}, ParamError);
   EXPECT_FALSE(JointRegistrar().estimate({}).found);
 }

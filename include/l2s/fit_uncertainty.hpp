@@ -33,6 +33,10 @@ struct FitUncertainty {
   /// the larger of the residual-based value and this one (its bound with
   /// Student t of poses - 1 dof).
   std::array<double, 6> sigma_between_poses{};
+  /// [m m m rad rad rad] The part of sigma from an error each group of pairs
+  /// shares (add_shared_group_error; JointRegistrar: each board pose); 0 when
+  /// not modelled. sigma is the residual-based value and this in quadrature.
+  std::array<double, 6> sigma_shared{};
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();  ///< [SI] of (tx ty tz roll pitch yaw)
   /// sqrt(lambda_max / lambda_min) of J^T J with rotations scaled by the
   /// points' mean range (so a radian and a metre at the board weigh alike).
@@ -47,6 +51,17 @@ struct FitUncertainty {
 L2S_EXPORT FitUncertainty fit_uncertainty(const std::vector<Eigen::Vector3d>& target,
                                           const std::vector<Eigen::Vector3d>& source,
                                           const Eigen::Isometry3d& T_target_source);
+
+/// Adds to `u` an error that each group of pairs shares and no residual shows
+/// (the four centres of one board pose: a depth or tilt bias of its
+/// detection): an independent rigid motion of each group's points about their
+/// centroid, `sigma_t` [m] and `sigma_r` [rad] per axis, propagated through
+/// the linearised fit. Updates covariance, sigma, bound_95 (the residual part
+/// with Student t, this part with the normal quantile) and sigma_shared.
+/// Groups index `source` as given to fit_uncertainty; nothing when `u` is not valid.
+L2S_EXPORT void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
+                                       const std::vector<std::vector<Eigen::Vector3d>>& source_groups,
+                                       double sigma_t, double sigma_r);
 
 /// [m] The rms of |target - T source| expected for new pairs at `source`
 /// (source frame) under the fit `u` of T: the residual noise of the fit's

@@ -189,6 +189,8 @@ void visit(V& v, JointRegistrar::Params& p) {
   v.field("outlier_floor", p.outlier_floor);
   v.field("min_poses_to_reject", p.min_poses_to_reject);
   v.field("max_condition", p.max_condition);
+  v.field("pose_bias_translation", p.pose_bias_translation);
+  v.field("pose_bias_rotation", p.pose_bias_rotation);
 }
 
 template <class V>

@@ -8,6 +8,7 @@
 #include <l2s/fit_uncertainty.hpp>
 #include <l2s/pose.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -101,6 +102,8 @@ void emit_uncertainty(YAML::Emitter& out, const JointRegistrar::Result& joint, i
   emit_dofs(out, "sigma", u.sigma);
   emit_dofs(out, "bound_95", u.bound_95);
   if (poses_used >= 3) emit_dofs(out, "sigma_between_poses", u.sigma_between_poses);
+  if (*std::max_element(u.sigma_shared.begin(), u.sigma_shared.end()) > 0.0)
+    emit_dofs(out, "sigma_shared", u.sigma_shared);
   out << YAML::Key << "residual_sigma_m" << YAML::Value << format_number(u.sigma_residual);
   out << YAML::Key << "dof" << YAML::Value << u.dof;
   out << YAML::Key << "condition" << YAML::Value << format_number(u.condition);

@@ -99,6 +99,57 @@ double student_t_95(int dof) {
   return 1.95996 + 2.4 / dof;  // within 0.002 of the true quantile above 30
 }
 
+void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
+                            const std::vector<std::vector<Eigen::Vector3d>>& source_groups, double sigma_t,
+                            double sigma_r) {
+  if (!u.valid || !(sigma_t > 0.0 || sigma_r > 0.0)) return;
+  Vector6d theta;
+  theta << T_target_source.translation(), roll_pitch_yaw(T_target_source.rotation());
+  // theta moves by (J^T J)^-1 J^T dr for residual changes dr; a group moved
+  // by (dt, dphi) about its centroid c changes its residuals by
+  // dt + dphi x (q - c) (target frame, q = T source), i.e. G (dt, dphi).
+  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> groups;  // (J, G) per group
+  Matrix6d JtJ = Matrix6d::Zero();
+  for (const auto& group : source_groups) {
+    std::vector<Eigen::Vector3d> q;
+    for (const auto& s : group)
+      if (s.allFinite()) q.push_back(T_target_source * s);
+    if (q.empty()) continue;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const auto& p : q) c += p / static_cast<double>(q.size());
+    Eigen::MatrixXd J(3 * q.size(), 6), G(3 * q.size(), 6);
+    std::size_t row = 0;
+    for (const auto& s : group) {
+      if (!s.allFinite()) continue;
+      const Eigen::Vector3d lever = T_target_source * s - c;
+      J.block<3, 6>(3 * row, 0) = point_jacobian(theta, s);
+      G.block<3, 3>(3 * row, 0).setIdentity();
+      G.block<3, 3>(3 * row, 3) << 0, lever.z(), -lever.y(), -lever.z(), 0, lever.x(), lever.y(), -lever.x(), 0;
+      ++row;
+    }
+    JtJ += J.transpose() * J;
+    groups.emplace_back(std::move(J), std::move(G));
+  }
+  const Eigen::FullPivLU<Matrix6d> lu(JtJ);
+  if (!lu.isInvertible()) return;
+  const Matrix6d JtJ_inverse = lu.inverse();
+  Vector6d motion_variance;
+  motion_variance << Eigen::Vector3d::Constant(sigma_t * sigma_t), Eigen::Vector3d::Constant(sigma_r * sigma_r);
+  Matrix6d shared = Matrix6d::Zero();
+  for (const auto& [J, G] : groups) {
+    const Matrix6d M = JtJ_inverse * J.transpose() * G;
+    shared += M * motion_variance.asDiagonal() * M.transpose();
+  }
+  const double t95 = student_t_95(u.dof);
+  u.covariance += shared;
+  for (int k = 0; k < 6; ++k) {
+    const double residual_sigma = std::sqrt(std::max(0.0, u.sigma[k] * u.sigma[k] - u.sigma_shared[k] * u.sigma_shared[k]));
+    u.sigma_shared[k] = std::sqrt(std::max(0.0, u.sigma_shared[k] * u.sigma_shared[k] + shared(k, k)));
+    u.sigma[k] = std::hypot(residual_sigma, u.sigma_shared[k]);
+    u.bound_95[k] = std::hypot(t95 * residual_sigma, 1.95996 * u.sigma_shared[k]);
+  }
+}
+
 double prediction_rms(const FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
                       const std::vector<Eigen::Vector3d>& source) {
   if (!u.valid || source.empty()) return 0.0;

@@ -123,6 +123,8 @@ void JointRegistrar::Params::validate() const {
   if (!(outlier_floor >= 0.0)) throw ParamError("outlier_floor", "must be >= 0");
   if (min_poses_to_reject < 3) throw ParamError("min_poses_to_reject", "must be >= 3");
   if (!(max_condition > 1.0)) throw ParamError("max_condition", "must be > 1");
+  if (!(pose_bias_translation >= 0.0)) throw ParamError("pose_bias_translation", "must be >= 0 m");
+  if (!(pose_bias_rotation >= 0.0)) throw ParamError("pose_bias_rotation", "must be >= 0 rad");
 }
 
 JointRegistrar::JointRegistrar(Params params, Registrar::Params registrar) : params_(params), registrar_(registrar) {
@@ -187,6 +189,10 @@ JointRegistrar::Result JointRegistrar::estimate(const std::vector<PosePair>& pos
   result.rms = rms_of(poses, use, current.T);
 
   result.uncertainty = uncertainty_of(poses, use, current.T);
+  std::vector<std::vector<Eigen::Vector3d>> pose_sources;
+  for (int p : use) pose_sources.emplace_back(poses[p].source.begin(), poses[p].source.end());
+  add_shared_group_error(result.uncertainty, current.T, pose_sources, params_.pose_bias_translation,
+                         params_.pose_bias_rotation);
   if (result.uncertainty.valid && result.uncertainty.condition <= params_.max_condition)
     result.uncertainty.suggestion.clear();  // well conditioned: nothing to suggest
 
