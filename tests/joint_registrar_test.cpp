@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <random>
 
 namespace l2s {
@@ -28,6 +30,15 @@ PosePair board(const Eigen::Vector3d& c, double yaw, std::mt19937& rng, double s
     out.target[h] = p + Eigen::Vector3d(n(rng), n(rng), n(rng));
     out.source[h] = truth().inverse() * p + Eigen::Vector3d(n(rng), n(rng), n(rng));
   }
+  return out;
+}
+
+/// |estimate - truth| per DoF (tx ty tz roll pitch yaw).
+std::array<double, 6> dof_errors(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d dt = T.translation() - truth().translation();
+  const Eigen::Vector3d dr = roll_pitch_yaw(T.rotation()) - roll_pitch_yaw(truth().rotation());
+  std::array<double, 6> out{};
+  for (int k = 0; k < 3; ++k) out[k] = std::abs(dt[k]), out[3 + k] = std::abs(std::remainder(dr[k], 2.0 * M_PI));
   return out;
 }
 
@@ -102,7 +113,6 @@ TEST(JointRegistrar, UncertaintyCoversTheTrueError) {
   // Isotropic noise on both sides, the model the covariance assumes: each
   // DoF's 95 % interval must hold the true value in about 95 % of runs.
   std::mt19937 rng(5);
-  const Eigen::Vector3d rpy_true = roll_pitch_yaw(truth().rotation());
   const int runs = 300;
   std::array<int, 6> covered{};
   JointRegistrar::Params noise_only;  // no error shared by a pose's centres here
@@ -112,9 +122,8 @@ TEST(JointRegistrar, UncertaintyCoversTheTrueError) {
                                          board({4.0, -0.8, 0.2}, -0.2, rng, 0.003)};
     const JointRegistrar::Result result = JointRegistrar(noise_only).estimate(poses);
     ASSERT_TRUE(result.uncertainty.valid);
-    const Eigen::Vector3d dt = result.T_target_source.translation() - truth().translation();
-    const Eigen::Vector3d dr = roll_pitch_yaw(result.T_target_source.rotation()) - rpy_true;
-    for (int k = 0; k < 6; ++k) covered[k] += std::abs(k < 3 ? dt[k] : dr[k - 3]) <= result.uncertainty.bound_95[k];
+    const std::array<double, 6> error = dof_errors(result.T_target_source);
+    for (int k = 0; k < 6; ++k) covered[k] += error[k] <= result.uncertainty.bound_95[k];
   }
   for (int k = 0; k < 6; ++k) {
     EXPECT_GE(covered[k], 0.9 * runs) << dof_names()[k];
@@ -127,7 +136,6 @@ TEST(JointRegistrar, JackknifeOverPosesCoversErrorsAPoseShares) {
   // detection): no residual shows it, the spread over poses does.
   std::mt19937 rng(8);
   std::normal_distribution<double> bias(0.0, 0.003);
-  const Eigen::Vector3d rpy_true = roll_pitch_yaw(truth().rotation());
   const int runs = 200;
   int covered = 0, covered_by_residuals = 0;
   for (int run = 0; run < runs; ++run) {
@@ -144,12 +152,10 @@ TEST(JointRegistrar, JackknifeOverPosesCoversErrorsAPoseShares) {
     const JointRegistrar::Result result = JointRegistrar(keep_all).estimate(poses);
     ASSERT_EQ(result.used_count(), 5);
     const FitUncertainty& u = result.uncertainty;
-    const Eigen::Vector3d dt = result.T_target_source.translation() - truth().translation();
-    const Eigen::Vector3d dr = roll_pitch_yaw(result.T_target_source.rotation()) - rpy_true;
+    const std::array<double, 6> error = dof_errors(result.T_target_source);
     for (int k = 0; k < 6; ++k) {
-      const double error = std::abs(k < 3 ? dt[k] : dr[k - 3]);
-      covered += error <= u.bound_95[k];
-      covered_by_residuals += error <= student_t_95(u.dof) * std::sqrt(u.covariance(k, k));
+      covered += error[k] <= u.bound_95[k];
+      covered_by_residuals += error[k] <= student_t_95(u.dof) * std::sqrt(u.covariance(k, k));
     }
   }
   EXPECT_GE(covered, 0.9 * 6 * runs);
@@ -170,7 +176,6 @@ TEST(JointRegistrar, ErrorsAPoseSharesAreCoveredWithOneOrTwoPoses) {
   // params describe (here exactly the one drawn) must be in the bound.
   const JointRegistrar::Params params;
   std::normal_distribution<double> shift(0.0, params.pose_bias_translation), turn(0.0, params.pose_bias_rotation);
-  const Eigen::Vector3d rpy_true = roll_pitch_yaw(truth().rotation());
   for (int poses_count : {1, 2}) {
     std::mt19937 rng(20 + poses_count);
     const int runs = 300;
@@ -184,13 +189,11 @@ TEST(JointRegistrar, ErrorsAPoseSharesAreCoveredWithOneOrTwoPoses) {
       const JointRegistrar::Result result = JointRegistrar(params).estimate(poses);
       ASSERT_TRUE(result.uncertainty.valid);
       const FitUncertainty& u = result.uncertainty;
-      const Eigen::Vector3d dt = result.T_target_source.translation() - truth().translation();
-      const Eigen::Vector3d dr = roll_pitch_yaw(result.T_target_source.rotation()) - rpy_true;
+      const std::array<double, 6> error = dof_errors(result.T_target_source);
       for (int k = 0; k < 6; ++k) {
-        const double error = std::abs(k < 3 ? dt[k] : dr[k - 3]);
-        covered += error <= u.bound_95[k];
+        covered += error[k] <= u.bound_95[k];
         const double residual_sigma = std::sqrt(u.sigma[k] * u.sigma[k] - u.sigma_shared[k] * u.sigma_shared[k]);
-        covered_by_residuals += error <= student_t_95(u.dof) * residual_sigma;
+        covered_by_residuals += error[k] <= student_t_95(u.dof) * residual_sigma;
       }
     }
     EXPECT_GE(covered, 0.92 * 6 * runs) << poses_count << " pose(s)";
