@@ -7,10 +7,21 @@
 #include "verify/hypothesis_search.hpp"
 #include "verify/stereo_evidence.hpp"
 
+#include <sstream>
+
 namespace l2s::detail {
 namespace {
 
 const Eigen::Vector3d kUpOptical(0.0, -1.0, 0.0);
+
+/// A refinement that ended far above its limit did not settle near any pose:
+/// the circles' pose is not one the images' rims agree with (a non-converged
+/// one that stopped on its round limit is usually still close, ~0.1 px).
+/// On random scenes such frames were 8-40 cm off.
+bool refinement_diverged(const BoardPoseRefiner::Result& refined, const BoardPoseRefiner::Params& params) {
+  constexpr double kDivergedFactor = 5.0;
+  return !refined.converged && refined.rms_px > kDivergedFactor * params.max_rms_px;
+}
 
 BranchReport fail(BranchReport report, const char* stage, const std::string& reason) {
   report.found = false;
@@ -93,6 +104,14 @@ class CameraHypothesisTester {
                             .refine(f_.left, f_.right, f_.cameras, f_.target, attempt.T_camera_board);
       hypothesis.evidence.rim_support = attempt.refined->edge_fraction;
       hypothesis.evidence.rim_background = attempt.refined->face_edge_fraction;
+      if (refinement_diverged(*attempt.refined, f_.params.board_refiner)) {
+        std::ostringstream reason;
+        reason.precision(1);
+        reason << std::fixed << "the rim refinement diverged (rms " << attempt.refined->rms_px
+               << " px): no pose of this board fits the images' rims";
+        if (!first_ || first_->candidate == attempt.candidate) first_ = std::move(attempt);
+        return stop_after_holes(hypothesis, "refine", reason.str());
+      }
     }
     // The first hypothesis is what `l2s detect` shows when none is verified:
     // with its refinement, which is what rejected it.
@@ -107,6 +126,12 @@ class CameraHypothesisTester {
     hypothesis.stage = stage;
     hypothesis.reason = reason;
     return false;
+  }
+
+  std::optional<CameraAttempt> stop_after_holes(BoardHypothesis& hypothesis, const char* stage,
+                                                const std::string& reason) {
+    stop(hypothesis, stage, reason);
+    return std::nullopt;
   }
 
   /// The candidate whose holes were already found on a board that this

@@ -186,6 +186,7 @@ void remove_level_planes(Samples& s, int count, const detail::VerticalPlaneRansa
 struct Extraction {
   PlaneCandidate candidate;
   detail::Patch patch;
+  Plane patch_plane;  // the plane the patch was found on (its grid's), before the refit
 };
 
 void refit(Extraction& e, const std::vector<Eigen::Vector3d>& points, const std::vector<std::size_t>& finite,
@@ -228,6 +229,7 @@ Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& point
   std::vector<Eigen::Vector3d> on_plane;
   for (std::size_t i = 0; i < samples.points.size(); ++i)
     if (std::abs(plane.signedDistance(samples.points[i])) <= samples.tolerance[i]) on_plane.push_back(samples.points[i]);
+  e.patch_plane = plane;
   const detail::PlaneGrid grid(plane, params.axis, params.patch_gap_horizontal, params.patch_gap_vertical);
   // The window allows the board's size plus tolerance, horizontally long.
   const double tol = 1.0 + params.size_tolerance;
@@ -370,8 +372,12 @@ PlaneSegmenter::Result PlaneSegmenter::segment(const std::vector<Eigen::Vector3d
     const bool too_small = e.candidate.support < params_.min_support;
     result.candidates.push_back(std::move(e.candidate));
     if (too_small) break;  // candidates come in decreasing support: none left can be the board
-    // Drop this patch (thick surfaces too: inlier_threshold) and look again.
-    const Plane& cut = result.candidates.back().plane;
+    // Drop this patch (thick surfaces too: inlier_threshold) and look again,
+    // on the plane and grid the patch was found with: the refit tilts a wide
+    // plane enough that its patch cells no longer line up with the samples
+    // (a wall split by the board in front of it was found again and again,
+    // until the candidates ran out before the board).
+    const Plane& cut = e.patch_plane;
     const detail::PlaneGrid grid(cut, params_.axis, params_.patch_gap_horizontal, params_.patch_gap_vertical);
     Samples rest;
     for (std::size_t i = 0; i < s.points.size(); ++i) {
