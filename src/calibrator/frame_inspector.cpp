@@ -125,7 +125,7 @@ void describe_hypotheses(std::string& out, const std::vector<BoardHypothesis>& h
     append(out, "    plane #%-2d (prior %.2f): %s%s: %s\n", h.candidate, h.prior,
            h.chosen ? "CHOSEN" : h.verified ? "verified" : "rejected at ", h.verified ? "" : h.stage.c_str(),
            h.reason.c_str());
-    if (h.stage.empty() || h.stage == "verify")
+    if (h.stage.empty() || h.stage == "verify" || h.stage == "refine")  // holes were found: evidence exists
       append(out,
              "                   holes open/blocked TL %d/%d TR %d/%d BL %d/%d BR %d/%d, outline "
              "open/blocked %d/%d\n",
