@@ -110,7 +110,8 @@ class CameraHypothesisTester {
         reason << std::fixed << "the rim refinement diverged (rms " << attempt.refined->rms_px
                << " px): no pose of this board fits the images' rims";
         if (!first_ || first_->candidate == attempt.candidate) first_ = std::move(attempt);
-        return stop_after_holes(hypothesis, "refine", reason.str());
+        stop(hypothesis, "refine", reason.str());
+        return std::nullopt;
       }
     }
     // The first hypothesis is what `l2s detect` shows when none is verified:
@@ -126,12 +127,6 @@ class CameraHypothesisTester {
     hypothesis.stage = stage;
     hypothesis.reason = reason;
     return false;
-  }
-
-  std::optional<CameraAttempt> stop_after_holes(BoardHypothesis& hypothesis, const char* stage,
-                                                const std::string& reason) {
-    stop(hypothesis, stage, reason);
-    return std::nullopt;
   }
 
   /// The candidate whose holes were already found on a board that this

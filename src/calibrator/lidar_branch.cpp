@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "detail/board_frame.hpp"
+#include "plane/plane_fit.hpp"
 #include "verify/cloud_evidence.hpp"
 #include "verify/hypothesis_search.hpp"
 
@@ -166,9 +167,7 @@ BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Cal
   report.hole_radius = best->circles.radius;
   report.found = true;
   report.centers = best->circles.centers;
-  Plane plane = planes.candidates[best->candidate].plane;
-  if (plane.offset() < 0.0) plane = Plane(-plane.normal(), -plane.offset());  // normal towards the sensor
-  report.board_plane = plane;
+  report.board_plane = facing_origin(planes.candidates[best->candidate].plane);
   return report;
 }
 

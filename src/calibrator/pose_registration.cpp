@@ -119,8 +119,7 @@ Registrar::Result as_registration(const JointRegistrar::Result& joint) {
 /// (which the rim fit puts on the board's front face), normal towards the camera.
 Plane camera_plane(const HoleCenters& centers) {
   const std::vector<Eigen::Vector3d> points(centers.begin(), centers.end());
-  const Plane plane = fit_plane(points, {0, 1, 2, 3});
-  return plane.offset() < 0.0 ? Plane(-plane.normal(), -plane.offset()) : plane;
+  return facing_origin(fit_plane(points, {0, 1, 2, 3}));
 }
 
 /// The joint centre fit refined with the board planes of the used poses

@@ -111,21 +111,18 @@ void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target
   std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> groups;  // (J, G) per group
   Matrix6d JtJ = Matrix6d::Zero();
   for (const auto& group : source_groups) {
-    std::vector<Eigen::Vector3d> q;
-    for (const auto& s : group)
-      if (s.allFinite()) q.push_back(T_target_source * s);
-    if (q.empty()) continue;
+    std::vector<Eigen::Vector3d> s;  // the group's finite points
+    for (const auto& p : group)
+      if (p.allFinite()) s.push_back(p);
+    if (s.empty()) continue;
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const auto& p : q) c += p / static_cast<double>(q.size());
-    Eigen::MatrixXd J(3 * q.size(), 6), G(3 * q.size(), 6);
-    std::size_t row = 0;
-    for (const auto& s : group) {
-      if (!s.allFinite()) continue;
-      const Eigen::Vector3d lever = T_target_source * s - c;
-      J.block<3, 6>(3 * row, 0) = point_jacobian(theta, s);
-      G.block<3, 3>(3 * row, 0).setIdentity();
-      G.block<3, 3>(3 * row, 3) << 0, lever.z(), -lever.y(), -lever.z(), 0, lever.x(), lever.y(), -lever.x(), 0;
-      ++row;
+    for (const auto& p : s) c += T_target_source * p / static_cast<double>(s.size());
+    Eigen::MatrixXd J(3 * s.size(), 6), G(3 * s.size(), 6);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const Eigen::Vector3d lever = T_target_source * s[i] - c;
+      J.block<3, 6>(3 * i, 0) = point_jacobian(theta, s[i]);
+      G.block<3, 3>(3 * i, 0).setIdentity();
+      G.block<3, 3>(3 * i, 3) << 0, lever.z(), -lever.y(), -lever.z(), 0, lever.x(), lever.y(), -lever.x(), 0;
     }
     JtJ += J.transpose() * J;
     groups.emplace_back(std::move(J), std::move(G));
