@@ -19,6 +19,10 @@ namespace l2s {
 struct BoardEvidence {
   std::array<int, 4> hole_open{};     ///< samples inside each hole (enum Hole order; rim margin left out) that see through it
   std::array<int, 4> hole_blocked{};  ///< samples inside each hole that see a surface on the board plane
+  /// [robust sigmas] how unlike the board's face beside its rim each hole's
+  /// inside looks (camera: median gray level against the face's, over their
+  /// combined spread); 0 when the sensor cannot tell.
+  std::array<double, 4> hole_look_difference{};
   int outline_open = 0;               ///< samples in a band just outside the board outline that see past the board
   int outline_blocked = 0;            ///< samples in that band that see a surface coplanar with the board
   double fit_rms = 0.0;               ///< [m] rms of the hole rim fit
@@ -46,6 +50,12 @@ class L2S_EXPORT BoardVerifier {
     double outline_width = 0.15;    ///< [m] width of that band, > 0
     int min_samples = 5;            ///< a hole (or the outline band) with fewer samples gives no evidence, >= 1
     double min_hole_open = 0.6;     ///< a hole with evidence must see through in at least this share of its samples, 0..1
+    /// ... unless its inside looks at least this unlike the face around it
+    /// (hole_look_difference): then the board's surface does not cover it,
+    /// and the samples that say so matched a repetitive background one period
+    /// off (no evidence). On 80 random-scene frames covered wall patches
+    /// showed <= 0.5, true holes of boards before far brick walls 2.3-6.7; > 0
+    double min_look_difference = 2.0;
     double min_outline_open = 0.5;  ///< the outline band, with evidence, must see past the board in at least this share, 0..1
     double min_rim_support = 0.3;   ///< rim support, when known, must reach this share, 0..1
     /// ... and exceed the share of the face beside the rims (rim_background),

@@ -93,8 +93,10 @@ class CameraHypothesisTester {
     if (!first_) first_ = attempt;
     attempt.T_camera_board = board_pose_from_centers(attempt.circles.centers, attempt.plane);
     boards_found_.push_back({attempt.candidate, attempt.T_camera_board});
+    StereoEvidenceParams evidence_params;
+    evidence_params.max_depth = f_.params.stereo.max_depth;
     hypothesis.evidence = stereo_evidence(f_.left_gray, f_.right_gray, f_.cameras, attempt.T_camera_board,
-                                          f_.target, f_.params.camera_verifier);
+                                          f_.target, f_.params.camera_verifier, evidence_params);
     hypothesis.evidence.fit_rms = attempt.circles.rms;
     hypothesis.evidence.fit_scale = 0.25 * f_.params.camera_circles.inlier_threshold;
     // The rim refinement is the sharpest test of a guess: a true board's rims

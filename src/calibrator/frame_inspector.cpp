@@ -115,22 +115,27 @@ void describe_hypotheses(std::string& out, const std::vector<BoardHypothesis>& h
   if (hypotheses.empty()) return;
   append(out, "  verify           %zu hypothesis(es) tried\n", hypotheses.size());
   append(out,
-         "                   [%s: hole_margin %.3f m, min_hole_open %.2f, min_outline_open %.2f, "
+         "                   [%s: hole_margin %.3f m, min_hole_open %.2f, min_look_difference %.1f, min_outline_open %.2f, "
          "min_rim_support %.2f, min_rim_excess %.2f, min_samples %d, confident_score %.2f, max_hypotheses %d, "
          "challenger_prior %.2f]\n",
-         field, p.hole_margin, p.min_hole_open, p.min_outline_open, p.min_rim_support, p.min_rim_excess,
+         field, p.hole_margin, p.min_hole_open, p.min_look_difference, p.min_outline_open, p.min_rim_support, p.min_rim_excess,
          p.min_samples, p.confident_score, p.max_hypotheses, p.challenger_prior);
   for (const BoardHypothesis& h : hypotheses) {
     const BoardEvidence& e = h.evidence;
     append(out, "    plane #%-2d (prior %.2f): %s%s: %s\n", h.candidate, h.prior,
            h.chosen ? "CHOSEN" : h.verified ? "verified" : "rejected at ", h.verified ? "" : h.stage.c_str(),
            h.reason.c_str());
-    if (h.stage.empty() || h.stage == "verify" || h.stage == "refine")  // holes were found: evidence exists
+    if (h.stage.empty() || h.stage == "verify" || h.stage == "refine") {  // holes were found: evidence exists
       append(out,
              "                   holes open/blocked TL %d/%d TR %d/%d BL %d/%d BR %d/%d, outline "
              "open/blocked %d/%d\n",
              e.hole_open[0], e.hole_blocked[0], e.hole_open[1], e.hole_blocked[1], e.hole_open[2],
              e.hole_blocked[2], e.hole_open[3], e.hole_blocked[3], e.outline_open, e.outline_blocked);
+      const auto& look = e.hole_look_difference;
+      if (look[0] + look[1] + look[2] + look[3] > 0.0)
+        append(out, "                   inside unlike the face around (sigmas) TL %.1f TR %.1f BL %.1f BR %.1f\n",
+               look[0], look[1], look[2], look[3]);
+    }
   }
 }
 

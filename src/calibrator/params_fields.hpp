@@ -83,6 +83,7 @@ void visit(V& v, BoardVerifier::Params& p) {
   v.field("outline_width", p.outline_width);
   v.field("min_samples", p.min_samples);
   v.field("min_hole_open", p.min_hole_open);
+  v.field("min_look_difference", p.min_look_difference);
   v.field("min_outline_open", p.min_outline_open);
   v.field("min_rim_support", p.min_rim_support);
   v.field("min_rim_excess", p.min_rim_excess);

@@ -25,6 +25,7 @@ void BoardVerifier::Params::validate() const {
   if (!(outline_width > 0.0)) throw ParamError("outline_width", "must be > 0 m");
   if (min_samples < 1) throw ParamError("min_samples", "must be >= 1");
   if (!(min_hole_open >= 0.0 && min_hole_open <= 1.0)) throw ParamError("min_hole_open", "must be in [0, 1]");
+  if (!(min_look_difference > 0.0)) throw ParamError("min_look_difference", "must be > 0");
   if (!(min_outline_open >= 0.0 && min_outline_open <= 1.0))
     throw ParamError("min_outline_open", "must be in [0, 1]");
   if (!(confident_score >= 0.0 && confident_score <= 1.0)) throw ParamError("confident_score", "must be in [0, 1]");
@@ -42,7 +43,7 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
   Verdict verdict;
   std::ostringstream summary;
   double open_sum = 0.0;
-  int holes_seen = 0;
+  int holes_seen = 0, holes_unlike_face = 0;
   for (int h = 0; h < 4; ++h) {
     const int samples = e.hole_open[h] + e.hole_blocked[h];
     if (samples < params_.min_samples) {
@@ -50,6 +51,11 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
       continue;
     }
     const double open = share(e.hole_open[h], e.hole_blocked[h]);
+    if (open < params_.min_hole_open && e.hole_look_difference[h] >= params_.min_look_difference) {
+      open_sum += kNoEvidence;  // not the board's face: a background aliased onto the plane
+      ++holes_unlike_face;
+      continue;
+    }
     if (open < params_.min_hole_open) {
       std::ostringstream reason;
       reason << "the " << kHoleNames[h] << " hole is covered: " << e.hole_blocked[h] << " of " << samples
@@ -96,7 +102,10 @@ BoardVerifier::Verdict BoardVerifier::judge(const BoardEvidence& e) const {
   verdict.verified = true;
   verdict.score = holes * outline * fit * rims;
   summary.precision(2);
-  summary << std::fixed << "holes open " << holes << " (" << holes_seen << " of 4 with evidence), outline clear "
+  summary << std::fixed << "holes open " << holes << " (" << holes_seen << " of 4 with evidence";
+  if (holes_unlike_face > 0)
+    summary << "; " << holes_unlike_face << " matched on the plane but unlike the face around them, taken as none";
+  summary << "), outline clear "
           << outline << (outline_samples >= params_.min_samples ? "" : " (no evidence)") << ", rim fit rms "
           << e.fit_rms * 1e3 << " mm";
   if (std::isfinite(e.rim_support)) summary << ", rims confirmed " << e.rim_support;
