@@ -11,7 +11,9 @@
 //    sub-pixel maximum of the directional gradient (bicubic sampling,
 //    parabolic peak fit);
 //  - Gauss-Newton on a left se(3) increment of T_camera_board minimises the
-//    signed normal distances with Huber weights; search and fit alternate.
+//    signed normal distances with Huber weights; search and fit alternate;
+//  - gray images first; colour ones (strongest channel per sample) when those
+//    fail, for rims that differ from the face in hue more than in brightness.
 // Using the right image too gives each rim a disparity, i.e. the depth and
 // tilt that a single view hardly observes.
 
@@ -35,20 +37,23 @@
 namespace l2s {
 namespace {
 
-/// Directional gradients of a crop of a gray image, in gray levels per pixel.
+/// Directional gradients of a crop of an 8-bit image, in gray levels per
+/// pixel: one pair per channel (one for gray, three for colour).
 struct Gradient {
-  cv::Mat gx, gy;  // CV_32F
+  std::vector<cv::Mat> gx, gy;  // CV_32F, per channel
   int x0 = 0, y0 = 0;
 
-  /// Gradient at full-image coordinates (Catmull-Rom bicubic); false outside
-  /// the crop. Bilinear interpolation would make the profile along a search
-  /// line piecewise linear with kinks at the pixel grid, and the parabolic
-  /// peak fit would lock towards them: a bias of ~0.02 px that differs
-  /// between the views, i.e. ~1 mm of depth per hole at 3.5 m.
-  bool at(double x, double y, Eigen::Vector2d& g) const {
+  /// The strongest channel's |gradient . normal| at full-image coordinates
+  /// (Catmull-Rom bicubic); false outside the crop. Bilinear interpolation
+  /// would make the profile along a search line piecewise linear with kinks
+  /// at the pixel grid, and the parabolic peak fit would lock towards them:
+  /// a bias of ~0.02 px that differs between the views, i.e. ~1 mm of depth
+  /// per hole at 3.5 m.
+  bool along(double x, double y, const Eigen::Vector2d& normal, double& value) const {
+    if (gx.empty()) return false;
     const double fx = x - x0, fy = y - y0;
     const int ix = static_cast<int>(std::floor(fx)), iy = static_cast<int>(std::floor(fy));
-    if (ix < 1 || iy < 1 || ix + 2 >= gx.cols || iy + 2 >= gx.rows) return false;
+    if (ix < 1 || iy < 1 || ix + 2 >= gx[0].cols || iy + 2 >= gx[0].rows) return false;
     const auto weights = [](double t, double w[4]) {
       const double t2 = t * t, t3 = t2 * t;
       w[0] = 0.5 * (-t3 + 2 * t2 - t);
@@ -67,20 +72,28 @@ struct Gradient {
       }
       return sum;
     };
-    g = {interp(gx), interp(gy)};
+    value = 0.0;
+    for (std::size_t c = 0; c < gx.size(); ++c)
+      value = std::max(value, std::abs(interp(gx[c]) * normal.x() + interp(gy[c]) * normal.y()));
     return true;
   }
 };
 
-Gradient gradient_of(const cv::Mat& gray, const cv::Rect& box) {
+Gradient gradient_of(const cv::Mat& image, const cv::Rect& box) {
   Gradient grad;
-  const cv::Rect crop = box & cv::Rect(0, 0, gray.cols, gray.rows);
+  const cv::Rect crop = box & cv::Rect(0, 0, image.cols, image.rows);
   grad.x0 = crop.x;
   grad.y0 = crop.y;
   if (crop.area() <= 0) return grad;
-  // 3x3 Sobel / 8 is the central difference smoothed across: gray levels / px.
-  cv::Sobel(gray(crop), grad.gx, CV_32F, 1, 0, 3, 1.0 / 8.0);
-  cv::Sobel(gray(crop), grad.gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  std::vector<cv::Mat> channels;
+  cv::split(image(crop), channels);
+  for (const cv::Mat& channel : channels) {
+    // 3x3 Sobel / 8 is the central difference smoothed across: gray levels / px.
+    grad.gx.emplace_back();
+    grad.gy.emplace_back();
+    cv::Sobel(channel, grad.gx.back(), CV_32F, 1, 0, 3, 1.0 / 8.0);
+    cv::Sobel(channel, grad.gy.back(), CV_32F, 0, 1, 3, 1.0 / 8.0);
+  }
   return grad;
 }
 
@@ -166,7 +179,7 @@ std::optional<cv::Rect> board_box(const View& view, const Rims& rims, const Eige
 /// gradient of the board's neighbourhood only: the whole image's would cost
 /// more than the fit. Empty when the board is behind a camera.
 std::vector<View> views_of(const StereoCamera& camera, const Image& left, const Image& right,
-                           const cv::Mat& gray_left, const cv::Mat& gray_right, const Rims& rims,
+                           const cv::Mat& pixels_left, const cv::Mat& pixels_right, const Rims& rims,
                            const Eigen::Isometry3d& T_camera_board, const Params& params) {
   std::vector<View> views;
   const double baseline = camera.baseline();
@@ -178,7 +191,7 @@ std::vector<View> views_of(const StereoCamera& camera, const Image& left, const 
     const double pad = 4.0 * params.search_range_px + 20.0;  // room for the pose to move
     const std::optional<cv::Rect> box = board_box(views[v], rims, T_camera_board, pad);
     if (!box) return {};
-    views[v].grad = gradient_of(v == 0 ? gray_left : gray_right, *box);
+    views[v].grad = gradient_of(v == 0 ? pixels_left : pixels_right, *box);
   }
   return views;
 }
@@ -307,10 +320,8 @@ class EdgeSearch {
     const Eigen::Vector2d& normal = at.normal;
     bool inside = true;
     for (int i = lo; i <= hi && inside; ++i) {
-      Eigen::Vector2d g;
-      inside = view.grad.at(u.x() + (i - steps_) * params_.search_step_px * normal.x(),
-                            u.y() + (i - steps_) * params_.search_step_px * normal.y(), g);
-      profile_[i] = std::abs(g.dot(normal));
+      inside = view.grad.along(u.x() + (i - steps_) * params_.search_step_px * normal.x(),
+                               u.y() + (i - steps_) * params_.search_step_px * normal.y(), normal, profile_[i]);
     }
     return inside;
   }
@@ -525,9 +536,15 @@ class Alignment {
 };
 
 /// [gray levels / px] Sigma of the Sobel / 8 response to the noise of the
-/// noisier image: white noise of sigma s gives s * sqrt(12) / 8 per axis.
-double gradient_noise(const cv::Mat& gray_left, const cv::Mat& gray_right) {
-  const double noise = std::max(detail::image_noise_sigma(gray_left), detail::image_noise_sigma(gray_right));
+/// noisier image (its noisiest channel): white noise of sigma s gives
+/// s * sqrt(12) / 8 per axis.
+double gradient_noise(const cv::Mat& pixels_left, const cv::Mat& pixels_right) {
+  double noise = 0.0;
+  for (const cv::Mat& image : {pixels_left, pixels_right}) {
+    std::vector<cv::Mat> channels;
+    cv::split(image, channels);
+    for (const cv::Mat& channel : channels) noise = std::max(noise, detail::image_noise_sigma(channel));
+  }
   return noise * std::sqrt(12.0) / 8.0;
 }
 
@@ -549,10 +566,9 @@ double rim_contrast(const std::vector<View>& views, const Rims& rims, const Eige
       const Eigen::Vector2d tangent = J * (T.linear() * rims.tangents[k]);
       if (tangent.norm() < 1e-9) continue;
       const Eigen::Vector2d normal(-tangent.y() / tangent.norm(), tangent.x() / tangent.norm());
-      double best = 0.0;
-      Eigen::Vector2d g;
+      double best = 0.0, value = 0.0;
       for (double t = -params.search_range_px; t <= params.search_range_px; t += params.search_step_px)
-        if (view.grad.at(u.x() + t * normal.x(), u.y() + t * normal.y(), g)) best = std::max(best, std::abs(g.dot(normal)));
+        if (view.grad.along(u.x() + t * normal.x(), u.y() + t * normal.y(), normal, value)) best = std::max(best, value);
       strongest.push_back(best);
     }
   if (strongest.empty()) return 0.0;
@@ -597,7 +613,7 @@ double face_edge_fraction(const Params& params, const Target& target, const std:
 /// threshold lowered to the rims' own contrast (edge_strength()).
 BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& views, const Rims& rims,
                                const std::vector<Sample>& anchors, const Eigen::Isometry3d& T_camera_board,
-                               const cv::Mat& gray_left, const cv::Mat& gray_right) {
+                               const cv::Mat& pixels_left, const cv::Mat& pixels_right) {
   BoardPoseRefiner::Result result;
   result.T_camera_board = T_camera_board;
   result.edge_strength = params.min_edge_strength;
@@ -609,7 +625,7 @@ BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& vi
   // search, and a refinement that converged at 6 would end ~7 mm off.
   Params weaker = params;
   weaker.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params),
-                                           gradient_noise(gray_left, gray_right), params);
+                                           gradient_noise(pixels_left, pixels_right), params);
   if (!(weaker.min_edge_strength < params.min_edge_strength)) return result;
   BoardPoseRefiner::Result retry = result;
   retry.reason.clear();
@@ -675,13 +691,25 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine_with_anchors(const Image& left
     return result;
   }
   const Rims rims = rims_of(target, params_.samples_per_rim);
-  const std::vector<View> views =
-      views_of(camera, left, right, gray_left, gray_right, rims, T_camera_board, params_);
+  std::vector<View> views = views_of(camera, left, right, gray_left, gray_right, rims, T_camera_board, params_);
   if (views.empty()) {
     result.reason = "the board is behind a camera";
     return result;
   }
   result = align(params_, views, rims, anchors, T_camera_board, gray_left, gray_right);
+  // A rim can differ from the face in hue more than in brightness (a gray
+  // board before red bricks): when the gray images fail, colour ones are
+  // tried, each sample taking its strongest channel. Only then, as that
+  // costs three gradients and lets more texture compete with the rims.
+  if (!result.converged && left.channels == 3 && right.channels == 3) {
+    const cv::Mat colour_left = detail::pixel_mat(left, "left"), colour_right = detail::pixel_mat(right, "right");
+    std::vector<View> colour = views_of(camera, left, right, colour_left, colour_right, rims, T_camera_board, params_);
+    Result in_colour = align(params_, colour, rims, anchors, T_camera_board, colour_left, colour_right);
+    if (in_colour.converged) {
+      result = std::move(in_colour);
+      views = std::move(colour);
+    }
+  }
   Params used = params_;
   used.min_edge_strength = result.edge_strength;
   result.face_edge_fraction = face_edge_fraction(used, target, views, result.T_camera_board);

@@ -13,6 +13,14 @@
 
 namespace l2s::detail {
 
+/// The image's pixels as a cv::Mat view (CV_8UC1 gray or CV_8UC3 BGR), no copy.
+/// Throws InputError("<name> image", ...) for an unusable image.
+inline cv::Mat pixel_mat(const Image& image, const std::string& name) {
+  check_image(image, name);
+  return cv::Mat(image.height, image.width, image.channels == 1 ? CV_8UC1 : CV_8UC3,
+                 const_cast<std::uint8_t*>(image.pixels.data()));
+}
+
 /// The 8-bit gray version of an image as a cv::Mat (a view when already gray).
 /// Throws InputError("<name> image", ...) for an unusable image.
 inline cv::Mat gray_mat(const Image& image, const std::string& name) {
