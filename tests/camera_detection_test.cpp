@@ -194,6 +194,20 @@ TEST(CameraDetection, RimsThatDifferInHueMoreThanInBrightnessAreRefinedInColour)
   }
 }
 
+// The same kind of board (random scene 39, 1440 px, low-contrast board
+// before bricks): its gray edges gave sixteen circle candidates and no hole
+// pattern, so the board was rejected before any refinement. Its edges are
+// taken again in colour.
+TEST(CameraDetection, HolesWhoseRimsShowOnlyInColourAreFoundWithColourEdges) {
+  const auto params = Calibrator::Params::preset("default");
+  const sim::RandomScene scene = sim::make_random_scene(39, 1, 1.0, 1);
+  const auto frame = scene.simulator->frame(0);
+  const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
+                                             scene.simulator->config().target, params);
+  ASSERT_TRUE(in.report.found) << scene.summary << "\n" << describe(in, params, scene.simulator->cameras());
+  EXPECT_LT(centre_error(in.report.centers, true_centers(*scene.simulator)), 0.01) << scene.summary;
+}
+
 // Random scenes whose board's rim refinement diverged (rms 50 and 1840 px)
 // while the circles' pose was kept: 0.41 m and 0.08 m off. A diverged
 // refinement rejects the hypothesis; the board is found elsewhere or not at all.

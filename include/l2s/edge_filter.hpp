@@ -34,6 +34,11 @@ class L2S_EXPORT EdgeFilter {
     double noise_factor = 4.0;       ///< ... nor below this many sigmas of the Sobel response to the image's own noise, >= 0
     int region_dilation_px = 3;      ///< [px] the board region is its points' pixels widened by this (stereo leaves the rims themselves unmatched), 0..50
     Magnitude magnitude = Magnitude::Hypot;  ///< scaling of the Sobel magnitude (see enum)
+    /// Colour images: each pixel's gradient from its strongest channel (rims
+    /// that differ from the face in hue more than in brightness); gray ones
+    /// ignore it. The camera branch turns it on for a second try when the
+    /// gray edges give no hole pattern.
+    bool colour = false;
     bool remove_border_lines = true;  ///< drop the outer border of the board (Sec. III-C)
     double line_distance = 0.02;     ///< [m] RANSAC inlier distance to a border line (SGM scatters borders by ~1 cm), > 0
     int line_iterations = 200;       ///< RANSAC samples per line, >= 1

@@ -195,9 +195,29 @@ class CameraHypothesisTester {
     return true;
   }
 
+  /// Edges and circles; on a colour image whose gray edges show no hole
+  /// pattern, once more with colour edges (rims that differ from the face in
+  /// hue more than in brightness).
   bool find_holes(CameraAttempt& attempt, BoardHypothesis& hypothesis) {
-    attempt.edges =
-        EdgeFilter(f_.params.edges).filter(f_.left, f_.cameras.left, attempt.board, attempt.plane, f_.target);
+    if (find_holes_with(f_.params.edges, attempt, hypothesis)) return true;
+    if (f_.left.channels != 3 || f_.params.edges.colour) return false;
+    auto gray_edges = std::move(attempt.edges);
+    auto gray_circles = std::move(attempt.circles);
+    const std::string stage = hypothesis.stage, reason = hypothesis.reason;
+    EdgeFilter::Params colour = f_.params.edges;
+    colour.colour = true;
+    if (find_holes_with(colour, attempt, hypothesis)) return true;
+    // `l2s detect` shows the gray try, the ordinary one.
+    attempt.edges = std::move(gray_edges);
+    attempt.circles = std::move(gray_circles);
+    hypothesis.stage = stage;
+    hypothesis.reason = reason + " (nor with colour edges)";
+    return false;
+  }
+
+  bool find_holes_with(const EdgeFilter::Params& edge_params, CameraAttempt& attempt, BoardHypothesis& hypothesis) {
+    hypothesis.stage.clear();
+    attempt.edges = EdgeFilter(edge_params).filter(f_.left, f_.cameras.left, attempt.board, attempt.plane, f_.target);
     if (!attempt.edges.found) return stop(hypothesis, "edges", attempt.edges.reason);
     attempt.circles = CircleFinder(f_.params.camera_circles)
                           .find(attempt.edges.edges.points, attempt.plane, kUpOptical, f_.target,

@@ -129,6 +129,7 @@ void visit(V& v, EdgeFilter::Params& p) {
   v.field("noise_factor", p.noise_factor);
   v.field("region_dilation_px", p.region_dilation_px);
   v.choice("magnitude", p.magnitude, {{M::Hypot, "hypot"}, {M::HalfL1, "half_l1"}});
+  v.field("colour", p.colour);
   v.field("remove_border_lines", p.remove_border_lines);
   v.field("line_distance", p.line_distance);
   v.field("line_iterations", p.line_iterations);

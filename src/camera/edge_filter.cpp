@@ -34,7 +34,7 @@ struct Sobel {
   cv::Mat gx, gy, magnitude;
 };
 
-Sobel sobel_of(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
+Sobel sobel_of_channel(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
   Sobel out;
   cv::Mat& gx = out.gx;
   cv::Mat& gy = out.gy;
@@ -49,6 +49,33 @@ Sobel sobel_of(const cv::Mat& gray, EdgeFilter::Magnitude kind) {
     magnitude = cv::min(magnitude, 255.0f);
   }
   return out;
+}
+
+/// As above for a gray or colour crop: in colour, each pixel takes the
+/// channel with the strongest response.
+Sobel sobel_of(const cv::Mat& image, EdgeFilter::Magnitude kind) {
+  if (image.channels() == 1) return sobel_of_channel(image, kind);
+  std::vector<cv::Mat> channels;
+  cv::split(image, channels);
+  Sobel out = sobel_of_channel(channels[0], kind);
+  for (std::size_t c = 1; c < channels.size(); ++c) {
+    const Sobel other = sobel_of_channel(channels[c], kind);
+    const cv::Mat stronger = other.magnitude > out.magnitude;
+    other.gx.copyTo(out.gx, stronger);
+    other.gy.copyTo(out.gy, stronger);
+    other.magnitude.copyTo(out.magnitude, stronger);
+  }
+  return out;
+}
+
+/// [gray levels] The image's noise sigma (colour: its noisiest channel).
+double noise_sigma(const cv::Mat& image) {
+  if (image.channels() == 1) return detail::image_noise_sigma(image);
+  std::vector<cv::Mat> channels;
+  cv::split(image, channels);
+  double sigma = 0.0;
+  for (const cv::Mat& channel : channels) sigma = std::max(sigma, detail::image_noise_sigma(channel));
+  return sigma;
 }
 
 /// Where pixel (x, y) looks on the plane, or nothing when the ray misses it.
@@ -75,18 +102,18 @@ struct EdgePixels {
 /// The threshold is the paper's tau_sobel, lowered to a fraction of the
 /// region's strong edges (a high quantile: rims and outline are a few % of the
 /// region) when the board shows little contrast.
-EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const StereoCloud& board,
+EdgePixels edge_pixels(const cv::Mat& image, const CameraInfo& camera, const StereoCloud& board,
                        const Plane& plane, const EdgeFilter::Params& params) {
   EdgePixels out;
-  cv::Mat mask(gray.size(), CV_8UC1, cv::Scalar(0));
+  cv::Mat mask(image.size(), CV_8UC1, cv::Scalar(0));
   for (const Eigen::Vector2i& px : board.pixels)
-    if (px.x() >= 0 && px.y() >= 0 && px.x() < gray.cols && px.y() < gray.rows) mask.at<std::uint8_t>(px.y(), px.x()) = 255;
+    if (px.x() >= 0 && px.y() >= 0 && px.x() < image.cols && px.y() < image.rows) mask.at<std::uint8_t>(px.y(), px.x()) = 255;
   const int k = params.region_dilation_px;
   cv::dilate(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * k + 1, 2 * k + 1)));
   const cv::Rect box = cv::boundingRect(mask);
   if (box.area() <= 0) return out;
-  const cv::Rect padded = (box + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, gray.cols, gray.rows);
-  const Sobel sobel = sobel_of(gray(padded), params.magnitude);
+  const cv::Rect padded = (box + cv::Size(2, 2) - cv::Point(1, 1)) & cv::Rect(0, 0, image.cols, image.rows);
+  const Sobel sobel = sobel_of(image(padded), params.magnitude);
   const cv::Mat& magnitude = sobel.magnitude;
   std::vector<float> values;
   for (int y = box.y; y < box.y + box.height; ++y)
@@ -96,7 +123,7 @@ EdgePixels edge_pixels(const cv::Mat& gray, const CameraInfo& camera, const Ster
   out.threshold = params.sobel_threshold;
   // A Sobel response has 3.5 times the image noise's sigma per axis; four of
   // those keep noise out of the edges of a low-contrast board.
-  const double noise_floor = params.noise_factor * std::sqrt(12.0) * detail::image_noise_sigma(gray);
+  const double noise_floor = params.noise_factor * std::sqrt(12.0) * noise_sigma(image);
   if (params.adaptive_quantile > 0.0) {
     auto q = values.begin() + static_cast<std::ptrdiff_t>(params.adaptive_quantile * (values.size() - 1));
     std::nth_element(values.begin(), q, values.end());
@@ -269,10 +296,11 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camer
   if (board_cloud.pixels.size() != board_cloud.points.size())
     throw ParamError("board_cloud", "points and pixels differ in count");
   detail::check_image(left, camera, "left");
-  const cv::Mat gray = detail::gray_mat(left, "left");
+  const cv::Mat image = params_.colour && left.channels == 3 ? detail::pixel_mat(left, "left")
+                                                             : detail::gray_mat(left, "left");
   Result result;
   result.input_points = board_cloud.size();
-  const EdgePixels found = edge_pixels(gray, camera, board_cloud, plane_camera, params_);
+  const EdgePixels found = edge_pixels(image, camera, board_cloud, plane_camera, params_);
   result.sobel_threshold = found.threshold;
   result.edge_points = found.points.size();
   const std::vector<bool> removed =
