@@ -160,20 +160,24 @@ TEST(CameraDetection, AWallSplitByTheBoardDoesNotUseUpThePlaneCandidates) {
   EXPECT_LT(centre_error(in.report.centers, true_centers(simulator)), 0.01);
 }
 
+/// Frame 0 of random scene `seed` through the camera branch (default
+/// preset): the board must be found, every centre within `tolerance` [m].
+void expect_board_found_in_random_scene(std::uint64_t seed, double tolerance) {
+  const auto params = Calibrator::Params::preset("default");
+  const sim::RandomScene scene = sim::make_random_scene(seed, 1, 1.0, 1);
+  const auto frame = scene.simulator->frame(0);
+  const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
+                                             scene.simulator->config().target, params);
+  ASSERT_TRUE(in.report.found) << scene.summary << "\n" << describe(in, params, scene.simulator->cameras());
+  EXPECT_LT(centre_error(in.report.centers, true_centers(*scene.simulator)), tolerance) << scene.summary;
+}
+
 // Boards before a brick wall metres behind them, seen by wide-baseline rigs
 // (0.27 and 0.38 m): through each hole the left and right views see parts of
 // the wall a whole number of brick periods apart, so the holes match at the
 // board's disparity and looked covered; the board was rejected in every frame.
 TEST(CameraDetection, HolesBeforeAFarBrickWallAreNotTakenAsCovered) {
-  const auto params = Calibrator::Params::preset("default");
-  for (const std::uint64_t seed : {20, 44}) {
-    const sim::RandomScene scene = sim::make_random_scene(seed, 1, 1.0, 1);
-    const auto frame = scene.simulator->frame(0);
-    const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
-                                               scene.simulator->config().target, params);
-    ASSERT_TRUE(in.report.found) << scene.summary << "\n" << describe(in, params, scene.simulator->cameras());
-    EXPECT_LT(centre_error(in.report.centers, true_centers(*scene.simulator)), 0.01) << scene.summary;
-  }
+  for (const std::uint64_t seed : {20, 44}) expect_board_found_in_random_scene(seed, 0.01);
 }
 
 // Gray boards before red brick walls in colour images: in gray the rims
@@ -182,30 +186,15 @@ TEST(CameraDetection, HolesBeforeAFarBrickWallAreNotTakenAsCovered) {
 // (seed 7: 17.5 mm off) or failed and the board was rejected (seed 30). The
 // refinement retries in colour, each rim sample taking its strongest channel.
 TEST(CameraDetection, RimsThatDifferInHueMoreThanInBrightnessAreRefinedInColour) {
-  const auto params = Calibrator::Params::preset("default");
-  for (const std::uint64_t seed : {7, 30}) {
-    const sim::RandomScene scene = sim::make_random_scene(seed, 1, 1.0, 1);
-    const auto frame = scene.simulator->frame(0);
-    ASSERT_EQ(frame.left.channels, 3) << scene.summary;
-    const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
-                                               scene.simulator->config().target, params);
-    ASSERT_TRUE(in.report.found) << scene.summary << "\n" << describe(in, params, scene.simulator->cameras());
-    EXPECT_LT(centre_error(in.report.centers, true_centers(*scene.simulator)), 0.012) << scene.summary;
-  }
+  for (const std::uint64_t seed : {7, 30}) expect_board_found_in_random_scene(seed, 0.012);
 }
 
 // The same kind of board (random scene 39, 1440 px, low-contrast board
-// before bricks): its gray edges gave sixteen circle candidates and no hole
-// pattern, so the board was rejected before any refinement. Its edges are
-// taken again in colour.
+// before bricks, colour): its gray edges gave sixteen circle candidates and
+// no hole pattern, so the board was rejected before any refinement. Its
+// edges are taken again in colour.
 TEST(CameraDetection, HolesWhoseRimsShowOnlyInColourAreFoundWithColourEdges) {
-  const auto params = Calibrator::Params::preset("default");
-  const sim::RandomScene scene = sim::make_random_scene(39, 1, 1.0, 1);
-  const auto frame = scene.simulator->frame(0);
-  const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
-                                             scene.simulator->config().target, params);
-  ASSERT_TRUE(in.report.found) << scene.summary << "\n" << describe(in, params, scene.simulator->cameras());
-  EXPECT_LT(centre_error(in.report.centers, true_centers(*scene.simulator)), 0.01) << scene.summary;
+  expect_board_found_in_random_scene(39, 0.01);
 }
 
 // Random scenes whose board's rim refinement diverged (rms 50 and 1840 px)

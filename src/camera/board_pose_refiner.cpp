@@ -539,12 +539,7 @@ class Alignment {
 /// noisier image (its noisiest channel): white noise of sigma s gives
 /// s * sqrt(12) / 8 per axis.
 double gradient_noise(const cv::Mat& pixels_left, const cv::Mat& pixels_right) {
-  double noise = 0.0;
-  for (const cv::Mat& image : {pixels_left, pixels_right}) {
-    std::vector<cv::Mat> channels;
-    cv::split(image, channels);
-    for (const cv::Mat& channel : channels) noise = std::max(noise, detail::image_noise_sigma(channel));
-  }
+  const double noise = std::max(detail::image_noise_sigma(pixels_left), detail::image_noise_sigma(pixels_right));
   return noise * std::sqrt(12.0) / 8.0;
 }
 

@@ -68,16 +68,6 @@ Sobel sobel_of(const cv::Mat& image, EdgeFilter::Magnitude kind) {
   return out;
 }
 
-/// [gray levels] The image's noise sigma (colour: its noisiest channel).
-double noise_sigma(const cv::Mat& image) {
-  if (image.channels() == 1) return detail::image_noise_sigma(image);
-  std::vector<cv::Mat> channels;
-  cv::split(image, channels);
-  double sigma = 0.0;
-  for (const cv::Mat& channel : channels) sigma = std::max(sigma, detail::image_noise_sigma(channel));
-  return sigma;
-}
-
 /// Where pixel (x, y) looks on the plane, or nothing when the ray misses it.
 bool cast_onto(const CameraInfo& camera, const Plane& plane, double x, double y, Eigen::Vector3d& out) {
   const Eigen::Vector3d ray((x - camera.cx()) / camera.fx(), (y - camera.cy()) / camera.fy(), 1.0);
@@ -123,7 +113,7 @@ EdgePixels edge_pixels(const cv::Mat& image, const CameraInfo& camera, const Ste
   out.threshold = params.sobel_threshold;
   // A Sobel response has 3.5 times the image noise's sigma per axis; four of
   // those keep noise out of the edges of a low-contrast board.
-  const double noise_floor = params.noise_factor * std::sqrt(12.0) * noise_sigma(image);
+  const double noise_floor = params.noise_factor * std::sqrt(12.0) * detail::image_noise_sigma(image);
   if (params.adaptive_quantile > 0.0) {
     auto q = values.begin() + static_cast<std::ptrdiff_t>(params.adaptive_quantile * (values.size() - 1));
     std::nth_element(values.begin(), q, values.end());

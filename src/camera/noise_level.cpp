@@ -7,7 +7,15 @@
 
 namespace l2s::detail {
 
-double image_noise_sigma(const cv::Mat& gray) {
+double image_noise_sigma(const cv::Mat& image) {
+  if (image.channels() > 1) {
+    std::vector<cv::Mat> channels;
+    cv::split(image, channels);
+    double sigma = 0.0;
+    for (const cv::Mat& channel : channels) sigma = std::max(sigma, image_noise_sigma(channel));
+    return sigma;
+  }
+  const cv::Mat& gray = image;
   std::vector<int> differences;
   const int step = std::max(1, static_cast<int>(std::sqrt(gray.rows * gray.cols / 20000.0)));
   for (int y = 0; y < gray.rows; y += step) {
