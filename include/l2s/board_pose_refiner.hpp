@@ -78,7 +78,9 @@ class L2S_EXPORT BoardPoseRefiner {
   explicit BoardPoseRefiner(Params params);
   const Params& params() const { return params_; }
 
-  /// `left`, `right`: rectified 8-bit images (gray or BGR); `T_camera_board`:
+  /// `left`, `right`: rectified 8-bit images (gray or BGR; a BGR pair whose
+  /// gray alignment fails is aligned again in colour, each rim sample taking
+  /// its strongest channel); `T_camera_board`:
   /// initial pose, board frame as in target.hpp. Throws ParamError for an
   /// invalid target, InputError naming the image when one is unusable or its
   /// size differs from the other's or its camera's.

@@ -19,7 +19,8 @@ namespace l2s {
 /// draws are seeded per call from the params).
 class L2S_EXPORT EdgeFilter {
  public:
-  /// How the 3x3 Sobel responses gx, gy (cv::Sobel on the 8-bit gray image,
+  /// How the 3x3 Sobel responses gx, gy (cv::Sobel on the 8-bit gray image or, with
+  /// Params::colour, on the strongest channel,
   /// each in [-1020, 1020]) become one 8-bit-like magnitude in [0, 255].
   enum class Magnitude {
     Hypot,     ///< min(255, sqrt(gx^2 + gy^2)): a step of 32 gray levels reaches 128
