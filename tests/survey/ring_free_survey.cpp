@@ -12,12 +12,13 @@
 // Ground truth: the simulator's board pose; the lidar sees the front face,
 // labelled as the target numbers its holes.
 
+#include "lidar_survey_scene.hpp"
+
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
 #include <l2s/metrics.hpp>
 #include <l2s/frame_inspector.hpp>
 #include <l2s/io/image_io.hpp>
-#include <l2s/sim/lidar_scene_draw.hpp>
 #include <l2s/sim/simulation.hpp>
 #include <l2s/viz/inspection_images.hpp>
 
@@ -25,44 +26,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
 namespace {
 
 using l2s::sim::DatasetSimulator;
-
-/// The lidar draw of `seed` with `model` forced and the board 2-5 m away.
-std::unique_ptr<DatasetSimulator> make_scene(const std::string& model, std::uint64_t seed,
-                                             int frames) {
-  for (int draw = 0; draw < 50; ++draw) {
-    std::mt19937_64 rng(seed * 7919 + static_cast<std::uint64_t>(draw));
-    l2s::sim::LidarSceneDraw lidar = l2s::sim::draw_lidar_scene(rng);
-    lidar.lidar = model;
-    lidar.board_distance = 2.0 + 3.0 * static_cast<double>(rng() >> 11) / 9007199254740992.0;
-    l2s::sim::SimulationConfig config;
-    lidar.apply_to(&config);
-    config.frames = frames;
-    config.seed = seed;
-    config.threads = 1;
-    try {
-      return std::make_unique<DatasetSimulator>(config);
-    } catch (const l2s::Error&) {
-    }
-  }
-  return nullptr;
-}
-
-l2s::HoleCenters truth(const DatasetSimulator& sim) {
-  const Eigen::Isometry3d T_lidar_board =
-      sim.config().setting.T_cambody_lidar().inverse() * sim.board_pose().T_cambody_board();
-  const auto holes = sim.config().target.hole_centers();
-  l2s::HoleCenters out;
-  for (int h = 0; h < 4; ++h)
-    out[h] = T_lidar_board * Eigen::Vector3d(holes[h].x(), holes[h].y(), 0.0);
-  return out;
-}
 
 /// Where the board's corners sit in the rosette's field of view: 1 = on its
 /// outline, > 1 outside it (Avia: an ellipse; Mid-360: an elevation band).
@@ -122,12 +91,12 @@ int main(int argc, char** argv) {
   int found = 0, total = 0;
   std::vector<double> errors;
   for (std::uint64_t seed = first; seed < first + static_cast<std::uint64_t>(count); ++seed) {
-    const auto sim = make_scene(model, seed, n * windows);
+    const auto sim = l2s::survey::make_lidar_scene(model, seed, n * windows, 2.0, 5.0);
     if (!sim) {
       std::printf("seed %llu: no scene\n", static_cast<unsigned long long>(seed));
       continue;
     }
-    const auto gt = truth(*sim);
+    const auto gt = l2s::survey::lidar_truth(*sim);
     if (std::getenv("SURVEY_VERBOSE")) {
       const auto& c = sim->config();
       const auto& b = sim->board_pose();

@@ -15,10 +15,11 @@
 // passes within 0.8 hole radii of the hole's centre: a ring grazing a rim
 // gives no chord to fit.
 
+#include "lidar_survey_scene.hpp"
+
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
 #include <l2s/frame_inspector.hpp>
-#include <l2s/sim/lidar_scene_draw.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <algorithm>
@@ -26,43 +27,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
 namespace {
 
 using l2s::sim::DatasetSimulator;
-
-/// The lidar draw of `seed` with `model` forced and the board min..max m away.
-std::unique_ptr<DatasetSimulator> make_scene(const std::string& model, std::uint64_t seed, int sweeps, double min_m,
-                                             double max_m) {
-  for (int draw = 0; draw < 50; ++draw) {
-    std::mt19937_64 rng(seed * 7919 + static_cast<std::uint64_t>(draw));
-    l2s::sim::LidarSceneDraw lidar = l2s::sim::draw_lidar_scene(rng);
-    lidar.lidar = model;
-    lidar.board_distance = min_m + (max_m - min_m) * static_cast<double>(rng() >> 11) / 9007199254740992.0;
-    l2s::sim::SimulationConfig config;
-    lidar.apply_to(&config);
-    config.frames = sweeps;
-    config.seed = seed;
-    config.threads = 1;
-    try {
-      return std::make_unique<DatasetSimulator>(config);
-    } catch (const l2s::Error&) {
-    }
-  }
-  return nullptr;
-}
-
-l2s::HoleCenters truth(const DatasetSimulator& sim) {
-  const Eigen::Isometry3d T_lidar_board =
-      sim.config().setting.T_cambody_lidar().inverse() * sim.board_pose().T_cambody_board();
-  const auto holes = sim.config().target.hole_centers();
-  l2s::HoleCenters out;
-  for (int h = 0; h < 4; ++h) out[h] = T_lidar_board * Eigen::Vector3d(holes[h].x(), holes[h].y(), 0.0);
-  return out;
-}
 
 /// The fewest rings that cross any one hole.
 int rings_per_hole(const DatasetSimulator& sim, const l2s::HoleCenters& centres) {
@@ -97,12 +67,12 @@ int main(int argc, char** argv) {
   int covered = 0, covered_found = 0;
   std::vector<double> errors;
   for (std::uint64_t seed = first; seed < first + static_cast<std::uint64_t>(count); ++seed) {
-    const auto sim = make_scene(model, seed, sweeps, min_m, max_m);
+    const auto sim = l2s::survey::make_lidar_scene(model, seed, sweeps, min_m, max_m);
     if (!sim) {
       std::printf("seed %llu: no scene\n", static_cast<unsigned long long>(seed));
       continue;
     }
-    const auto gt = truth(*sim);
+    const auto gt = l2s::survey::lidar_truth(*sim);
     const int rings = rings_per_hole(*sim, gt);
     for (int i = 0; i < sweeps; ++i) {
       const auto t = l2s::inspect_lidar(sim->sweep(i), sim->config().target, params);
