@@ -90,6 +90,43 @@ TEST(CalibrationCheck, MirroredFitFailsAndTheSceneSupportsTheRightOne) {
   EXPECT_POSE_NEAR(report.alternatives[report.preferred].T_lidar_camera, truth, 0.1, 0.005);
 }
 
+// When the camera's board poses are themselves wrong (a wall patch taken
+// for the board), the fit agrees with them and the board evidence cannot
+// object: the scene's edges and depth must. A shift of 12 cm moves the
+// overlay by tens of pixels, and the edges score far better where they
+// belong than where this transform puts them.
+TEST(CalibrationCheck, AWrongTransformIsCaughtWithoutTheBoardEvidence) {
+  std::vector<CheckFrame> without_board = frames();
+  for (CheckFrame& frame : without_board) frame.camera.T_camera_board.reset(), frame.camera.stereo_plane.reset();
+  const Eigen::Isometry3d truth = simulator().T_lidar_camera();
+  for (int axis = 0; axis < 3; ++axis) {
+    Eigen::Isometry3d wrong = truth;
+    wrong.translation() += 0.12 * (truth.linear() * Eigen::Vector3d::Unit(axis));
+    const auto report = make_check().check(without_board, wrong);
+    EXPECT_EQ(report.board_frames, 0);
+    EXPECT_NE(report.verdict, Verdict::Ok) << "axis " << axis << "\n" << reasons(report);
+  }
+}
+
+// An underexposed camera (an eighth of the light): every edge's step is an
+// eighth as high, and fixed Canny thresholds lost the board's outline and
+// the scene's edges with it (a right transform then had nothing to align
+// with). The thresholds follow the image's strongest edges down.
+TEST(CalibrationCheck, AnUnderexposedImageKeepsItsEdges) {
+  const auto params = Calibrator::Params::preset("default");
+  const SceneObserver observer(params.observer);
+  std::vector<CheckFrame> dark = frames();
+  for (std::size_t i = 0; i < dark.size(); ++i) {
+    Image left = simulator().frame(static_cast<int>(i)).left;
+    for (auto& pixel : left.pixels) pixel = static_cast<std::uint8_t>(pixel / 8);
+    dark[i].camera.edges = observer.observe_edges(left, simulator().cameras());
+  }
+  const auto bright = make_check().check(frames(), simulator().T_lidar_camera());
+  const auto report = make_check().check(dark, simulator().T_lidar_camera());
+  EXPECT_EQ(report.verdict, Verdict::Ok) << reasons(report);
+  EXPECT_GT(report.scores.edge_score, 0.6 * bright.scores.edge_score) << reasons(report);
+}
+
 TEST(CalibrationCheck, GrosslyWrongTransformFails) {
   Eigen::Isometry3d wrong = simulator().T_lidar_camera();
   wrong.linear() = wrong.linear() * Eigen::AngleAxisd(178 * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();

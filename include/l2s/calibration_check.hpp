@@ -73,10 +73,21 @@ class L2S_EXPORT CalibrationCheck {
     double failed_outside_fraction = 0.3;   ///< >= suspect_outside_fraction
     double suspect_alignment_gain = 0.3;    ///< the best edge score of any scan beats this transform's by this share, (0, 1)
     double failed_alignment_gain = 0.6;     ///< >= suspect_alignment_gain
-    /// The misalignment and roll rules count only when the best alignment
-    /// beats this transform's edge score by this share: below it the score is
-    /// flat around the transform, and where its optimum lies is noise, [0, 1).
+    /// The misalignment rule counts only when the best alignment near the
+    /// transform beats this transform's edge score by this share
+    /// (Report::misalignment_gain): below it the score is flat around the
+    /// transform, and where its optimum lies is noise, [0, 1).
     double min_misalignment_gain = 0.1;
+    /// ... and only when the edge score there is at least this: a weak
+    /// optimum (a shadow's edge, texture) is where six degrees of freedom
+    /// found a little more to lean on, not where the scene lies, 0..1.
+    double min_optimum_edge_score = 0.4;
+    /// Share of the lidar returns of the scene whose depth agrees with
+    /// stereo below which the result is suspect / failed: a right transform
+    /// has most agree (0.75-1 on the randomised scenes), a wrong one puts
+    /// returns on pixels of other surfaces, 0..1.
+    double suspect_depth_agreement = 0.6;
+    double failed_depth_agreement = 0.3;  ///< <= suspect_depth_agreement
     /// The roll rule counts only when the roll scan peaks this clearly
     /// (prominence): a roll moves the edges near the image centre little, so
     /// a true one raises the score by little, but its optimum is sharp, 0..1.
@@ -156,6 +167,12 @@ class L2S_EXPORT CalibrationCheck {
     /// sweep and the images (unsynchronised sensors) and the fit followed it.
     double scene_misalignment = std::numeric_limits<double>::quiet_NaN();
     double alignment_gain = 0.0;       ///< the largest best_gain of the six scans: a better alignment farther away, 0..1
+    /// How much better the edges score at their best alignment near this
+    /// transform than at the transform itself (1 - this score / that one),
+    /// 0..1: below min_misalignment_gain the score is flat around the
+    /// transform and where its optimum lies is noise.
+    double misalignment_gain = 0.0;
+    double optimum_edge_score = 0.0;   ///< edge score at that best alignment, 0..1
     double median_depth = 0.0;         ///< [m] of the scored lidar edges, camera frame
     std::vector<Alternative> alternatives;
     int preferred = -1;      ///< an alternative the scene supports clearly better (index), else -1

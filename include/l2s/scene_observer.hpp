@@ -98,8 +98,13 @@ class L2S_EXPORT SceneObserver {
     int max_edges = 3000;         ///< discontinuities kept per frame, evenly thinned, >= 10
     int max_board_points = 600;   ///< board returns kept, >= 10
     int max_scene_points = 10000; ///< sweep returns kept, evenly thinned, >= 10
-    double canny_low = 40.0;      ///< [gray levels] Canny hysteresis, low threshold, > 0
-    double canny_high = 100.0;    ///< [gray levels] high threshold, >= canny_low
+    double canny_low = 40.0;      ///< [Sobel magnitude] Canny hysteresis, low threshold, for an image of full contrast, > 0
+    double canny_high = 100.0;    ///< [Sobel magnitude] high threshold, >= canny_low
+    /// [Sobel magnitude] What a well-exposed image's strongest edges (its
+    /// 99.9th percentile gradient) reach. A darker or flatter image has
+    /// every edge's step smaller by the same share, so both Canny
+    /// thresholds scale down with it (never below the image's noise), > 0.
+    double strong_edge = 200.0;
     double depth_cell = 4.0;      ///< [px] side of a depth-map cell, >= 1
     double depth_jump_margin = 16.0;  ///< [px] stereo depth this close to a depth jump is dropped (SGBM fattens near surfaces), >= 0
 

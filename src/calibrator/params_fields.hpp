@@ -208,6 +208,7 @@ void visit(V& v, SceneObserver::Params& p) {
   v.field("max_scene_points", p.max_scene_points);
   v.field("canny_low", p.canny_low);
   v.field("canny_high", p.canny_high);
+  v.field("strong_edge", p.strong_edge);
   v.field("depth_cell", p.depth_cell);
   v.field("depth_jump_margin", p.depth_jump_margin);
 }
@@ -236,7 +237,10 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("failed_outside_fraction", p.failed_outside_fraction);
   v.field("suspect_alignment_gain", p.suspect_alignment_gain);
   v.field("min_misalignment_gain", p.min_misalignment_gain);
+  v.field("min_optimum_edge_score", p.min_optimum_edge_score);
   v.field("min_roll_prominence", p.min_roll_prominence);
+  v.field("suspect_depth_agreement", p.suspect_depth_agreement);
+  v.field("failed_depth_agreement", p.failed_depth_agreement);
   v.field("failed_alignment_gain", p.failed_alignment_gain);
   v.field("suspect_depth_tilt_deg", p.suspect_depth_tilt_deg);
   v.field("failed_depth_tilt_deg", p.failed_depth_tilt_deg);

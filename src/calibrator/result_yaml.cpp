@@ -59,6 +59,8 @@ void emit_quality(YAML::Emitter& out, const Calibrator::Result& result) {
   out << YAML::Key << "misalignment_px" << YAML::Value << format_number(q.misalignment_px);
   out << YAML::Key << "misalignment_deg" << YAML::Value << format_number(q.misalignment * 180.0 / M_PI);
   out << YAML::Key << "alignment_gain" << YAML::Value << format_number(q.alignment_gain);
+  out << YAML::Key << "misalignment_gain" << YAML::Value << format_number(q.misalignment_gain);
+  out << YAML::Key << "optimum_edge_score" << YAML::Value << format_number(q.optimum_edge_score);
   out << YAML::Key << "edge_median_depth_m" << YAML::Value << format_number(q.median_depth);
   out << YAML::Key << "scores" << YAML::Value << YAML::BeginMap;
   emit_scores(out, q.scores);

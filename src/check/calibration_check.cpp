@@ -106,6 +106,12 @@ void CalibrationCheck::Params::validate() const {
   ordered(suspect_alignment_gain, failed_alignment_gain, "failed_alignment_gain");
   if (!(min_misalignment_gain >= 0.0 && min_misalignment_gain < 1.0))
     throw ParamError("min_misalignment_gain", "must be in [0, 1)");
+  if (!(min_optimum_edge_score >= 0.0 && min_optimum_edge_score <= 1.0))
+    throw ParamError("min_optimum_edge_score", "must be in [0, 1]");
+  if (!(suspect_depth_agreement >= 0.0 && suspect_depth_agreement <= 1.0))
+    throw ParamError("suspect_depth_agreement", "must be in [0, 1]");
+  if (!(failed_depth_agreement >= 0.0 && failed_depth_agreement <= suspect_depth_agreement))
+    throw ParamError("failed_depth_agreement", "must be in [0, suspect_depth_agreement]");
   if (!(min_roll_prominence >= 0.0 && min_roll_prominence <= 1.0))
     throw ParamError("min_roll_prominence", "must be in [0, 1]");
   positive(suspect_depth_tilt_deg, "suspect_depth_tilt_deg");
@@ -163,6 +169,8 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
     report.misalignment_px = alignment.motion_px;
     report.misalignment = alignment.motion_px / view.fx;
     report.alignment_gain = alignment.gain;
+    report.misalignment_gain = alignment.improvement;
+    report.optimum_edge_score = alignment.optimum_score;
     if (report.scores.scene_edge_points >= params_.min_scene_edge_points)
       report.scene_misalignment = detail::scene_motion(scorer, T_camera_lidar, view, depth, params_) / view.fx;
   }

@@ -58,6 +58,8 @@ std::string describe(const CalibrationCheck::Report& report) {
               report.frames, report.board_frames, report.edge_frames, report.depth_frames);
   describe_scores(out, report.scores, "");
   if (report.scores.edge_points > 0) {
+    out << line("alignment  best near this transform %.1f px away, edge score %.3f there (%.0f %% better)\n",
+                report.misalignment_px, report.optimum_edge_score, 100.0 * report.misalignment_gain);
     out << line("peaks      edges at median depth %.2f m; offset / half width at half height:\n", report.median_depth);
     for (const auto& peak : report.peaks) {
       const double unit = peak.rotation ? 1.0 / kDeg : 100.0;

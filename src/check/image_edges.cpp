@@ -5,6 +5,7 @@
 #include "check/image_edges.hpp"
 
 #include "camera/cv_image.hpp"
+#include "camera/noise_level.hpp"
 
 #include <l2s/error.hpp>
 
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace l2s::detail {
 namespace {
@@ -47,14 +49,38 @@ cv::Mat rectified_left_gray(const Image& left, const StereoCamera& cameras) {
   return rectified;
 }
 
-cv::Mat canny_edges(const cv::Mat& gray, double canny_low, double canny_high) {
+CannyThresholds canny_thresholds(const cv::Mat& gray, const SceneObserver::Params& params) {
+  // The strongest edges: the 99.9th percentile of the Sobel magnitude (the
+  // board's outline and rims are about a thousandth of an image's pixels).
+  cv::Mat gx, gy, magnitude;
+  cv::Sobel(gray, gx, CV_32F, 1, 0);
+  cv::Sobel(gray, gy, CV_32F, 0, 1);
+  cv::magnitude(gx, gy, magnitude);
+  std::vector<float> values(magnitude.begin<float>(), magnitude.end<float>());
+  const auto top = values.begin() + static_cast<std::ptrdiff_t>(0.999 * (values.size() - 1));
+  std::nth_element(values.begin(), top, values.end());
+  const double scale = std::clamp(*top / params.strong_edge, 0.0, 1.0);
+  // The noise floor: each 3x3 Sobel component of pure noise has a sigma of
+  // sqrt(12) sigma = 3.46 sigma; the magnitude of noise exceeds 2.6 of those
+  // (9 sigma) in 3 % of pixels, which hysteresis only follows from a real
+  // edge, and 3.7 (13 sigma) in one pixel of a thousand, too few to seed
+  // chains of their own.
+  const double sigma = image_noise_sigma(gray);
+  CannyThresholds t;
+  t.low = std::max(params.canny_low * scale, 9.0 * sigma);
+  t.high = std::max({params.canny_high * scale, 13.0 * sigma, t.low});
+  return t;
+}
+
+cv::Mat canny_edges(const cv::Mat& gray, const SceneObserver::Params& params) {
+  const CannyThresholds t = canny_thresholds(gray, params);
   cv::Mat edges;
-  cv::Canny(gray, edges, canny_low, canny_high, 3, true);
+  cv::Canny(gray, edges, t.low, t.high, 3, true);
   return edges;
 }
 
-EdgeDistanceMap edge_distance_map(const cv::Mat& gray, double canny_low, double canny_high) {
-  const cv::Mat edges = canny_edges(gray, canny_low, canny_high);
+EdgeDistanceMap edge_distance_map(const cv::Mat& gray, const SceneObserver::Params& params) {
+  const cv::Mat edges = canny_edges(gray, params);
   EdgeDistanceMap map;
   map.width = gray.cols;
   map.height = gray.rows;

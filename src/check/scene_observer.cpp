@@ -108,6 +108,7 @@ void SceneObserver::Params::validate() const {
   if (max_scene_points < 10) throw ParamError("max_scene_points", "must be >= 10");
   if (!(canny_low > 0.0)) throw ParamError("canny_low", "must be > 0");
   if (!(canny_high >= canny_low)) throw ParamError("canny_high", "must be >= canny_low");
+  if (!(strong_edge > 0.0)) throw ParamError("strong_edge", "must be > 0");
   if (!(depth_cell >= 1.0)) throw ParamError("depth_cell", "must be >= 1");
   if (!(depth_jump_margin >= 0.0)) throw ParamError("depth_jump_margin", "must be >= 0");
 }
@@ -135,8 +136,7 @@ LidarObservation SceneObserver::observe_lidar(const LidarCloud& sweep,
 }
 
 EdgeDistanceMap SceneObserver::observe_edges(const Image& left, const StereoCamera& cameras) const {
-  return detail::edge_distance_map(detail::rectified_left_gray(left, cameras), params_.canny_low,
-                                   params_.canny_high);
+  return detail::edge_distance_map(detail::rectified_left_gray(left, cameras), params_);
 }
 
 DepthMap SceneObserver::observe_depth(const DisparityMap& disparity, const StereoCamera& cameras,

@@ -46,6 +46,11 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
           format("off the board, lidar depths tilt %.2f deg against the stereo depths (a rotation error; the board "
                  "may have moved between the lidar sweep and the images)",
                  s.depth_tilt / kDeg));
+  if (s.depth_points >= 100 && s.depth_agreement < p.suspect_depth_agreement)  // fewer: too little to judge
+    (s.depth_agreement < p.failed_depth_agreement ? j.failed : j.suspect)
+        .push_back(format("only %.0f %% of the lidar returns agree with the stereo depth at their pixels (a right "
+                          "transform has most agree)",
+                          100.0 * s.depth_agreement));
   j.grade(s.depth_bias, p.suspect_depth_bias, p.failed_depth_bias,
           format("lidar depths are %+.1f %% off the stereo depths (a wrong target size or baseline, or a shift along "
                  "the view)",
@@ -78,7 +83,8 @@ void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Para
           format("the lidar edges align %.0f %% better with the image elsewhere (%+.2f ", 100.0 * r.alignment_gain,
                  peak.best_offset * (peak.rotation ? 1.0 / kDeg : 100.0)) +
               (peak.rotation ? "deg in " : "cm in ") + peak.name + ")");
-  const bool misalignment_counts = r.alignment_gain >= p.min_misalignment_gain;
+  const bool misalignment_counts =
+      r.misalignment_gain >= p.min_misalignment_gain && r.optimum_edge_score >= p.min_optimum_edge_score;
   if (misalignment_counts)
     j.grade(r.misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
             format("the lidar edges align best with the image %.1f px (%.2f deg) away", r.misalignment_px,

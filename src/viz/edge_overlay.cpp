@@ -42,7 +42,7 @@ Image render_edge_overlay(const Image& left, const StereoCamera& cameras, const 
                           const Eigen::Isometry3d& T_lidar_camera, const SceneObserver& observer,
                           const std::string& caption, const OverlayParams& params) {
   const cv::Mat gray = detail::rectified_left_gray(left, cameras);
-  const cv::Mat edges = detail::canny_edges(gray, observer.params().canny_low, observer.params().canny_high);
+  const cv::Mat edges = detail::canny_edges(gray, observer.params());
   cv::Mat out;
   cv::cvtColor(gray / 2, out, cv::COLOR_GRAY2BGR);
   out.setTo(cv::Scalar(255, 128, 0), edges);
