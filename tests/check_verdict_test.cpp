@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 namespace l2s {
@@ -66,6 +67,60 @@ TEST(CheckVerdict, PlaneOffsetCountsOnlyBeyondTheStereoPlanesDisparityBias) {
   report.scores.plane_offset_px = CalibrationCheck::Scores::kNaN;
   detail::judge(report, params, 1000.0);
   EXPECT_TRUE(names_the_plane_offset(report));
+}
+
+// Coarse stereo of a plain or dark wall tilts by 2-6 deg against a right
+// transform's lidar depths (randomised scenes), so the tilt alone makes a
+// result suspect; only a tilt beyond such noise fails it.
+TEST(CheckVerdict, DepthTiltAloneMakesAResultSuspect) {
+  const CalibrationCheck::Params params;
+  CalibrationCheck::Report report = agreeing();
+  report.scores.depth_tilt = 4.6 * M_PI / 180;
+  detail::judge(report, params, 1000.0);
+  EXPECT_EQ(report.verdict, Verdict::Suspect);
+
+  report = agreeing();
+  report.scores.depth_tilt = 12.0 * M_PI / 180;
+  detail::judge(report, params, 1000.0);
+  EXPECT_EQ(report.verdict, Verdict::Failed);
+}
+
+// A wrong transform puts lidar returns on pixels of other surfaces: most of
+// them disagree with stereo, however well the board evidence agrees (a
+// camera that took a wall patch for the board, or a fit turned about a far
+// board). A handful of returns is too little to judge by.
+TEST(CheckVerdict, DepthAgreementJudgesWhenThereAreEnoughReturns) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double agreement, int points) {
+    CalibrationCheck::Report report = agreeing();
+    report.scores.depth_agreement = agreement;
+    report.scores.depth_points = points;
+    detail::judge(report, params, 1000.0);
+    return report.verdict;
+  };
+  EXPECT_EQ(judged(0.95, 5000), Verdict::Ok);
+  EXPECT_EQ(judged(0.45, 5000), Verdict::Suspect);
+  EXPECT_EQ(judged(0.20, 5000), Verdict::Failed);
+  EXPECT_EQ(judged(0.20, 50), Verdict::Ok);
+}
+
+// The edges' best alignment near the transform says how far the overlay is
+// off only where it is a real alignment: it must beat the transform's own
+// score, and put a good share of the edges on image edges (a weak optimum is
+// a shadow or texture that six degrees of freedom found to lean on).
+TEST(CheckVerdict, MisalignmentCountsOnlyAtARealOptimum) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double gain, double optimum) {
+    CalibrationCheck::Report report = agreeing();
+    report.misalignment = 2.0 * M_PI / 180;
+    report.misalignment_gain = gain;
+    report.optimum_edge_score = optimum;
+    detail::judge(report, params, 1000.0);
+    return report.verdict;
+  };
+  EXPECT_EQ(judged(0.3, 0.6), Verdict::Failed);
+  EXPECT_EQ(judged(0.05, 0.6), Verdict::Ok);  // a flat score: the optimum is anywhere on its top
+  EXPECT_EQ(judged(0.3, 0.2), Verdict::Ok);
 }
 
 }  // namespace
