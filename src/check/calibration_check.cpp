@@ -11,6 +11,7 @@
 
 #include <l2s/error.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -169,8 +170,9 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
     report.misalignment_px = alignment.motion_px;
     report.misalignment = alignment.motion_px / view.fx;
     report.alignment_gain = alignment.gain;
-    report.misalignment_gain = alignment.improvement;
     report.optimum_edge_score = alignment.optimum_score;
+    if (alignment.optimum_score > 0.0)
+      report.misalignment_gain = std::max(0.0, 1.0 - report.scores.edge_score / alignment.optimum_score);
     if (report.scores.scene_edge_points >= params_.min_scene_edge_points)
       report.scene_misalignment = detail::scene_motion(scorer, T_camera_lidar, view, depth, params_) / view.fx;
   }

@@ -163,7 +163,6 @@ EdgeAlignment align_edges(const SceneScorer& scorer, const Eigen::Isometry3d& T_
   out.motion_px = scorer.mean_motion(T_camera_lidar, out.T_camera_lidar_best);
   const double at_optimum = score(out.T_camera_lidar_best);
   out.optimum_score = at_optimum;
-  out.improvement = at_optimum > 0.0 ? std::max(0.0, 1.0 - score(T_camera_lidar) / at_optimum) : 0.0;
   const Steps steps(view, depth, params);
   for (int k = 0; k < 6; ++k) {
     const auto along = [&](double amount) {

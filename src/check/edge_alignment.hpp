@@ -16,7 +16,6 @@ struct EdgeAlignment {
   std::array<CalibrationCheck::DofPeak, 6> peaks;  ///< offsets of that optimum; widths and side lobes of scans around it
   double motion_px = 0.0;  ///< [px] mean image motion of the edges from the checked transform to the optimum
   double gain = 0.0;       ///< 1 - optimum's score / best score of any scan around it
-  double improvement = 0.0;  ///< 1 - the checked transform's score / the optimum's
   double optimum_score = 0.0;  ///< edge score at the optimum
 };
 

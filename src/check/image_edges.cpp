@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace l2s::detail {
@@ -49,16 +50,22 @@ cv::Mat rectified_left_gray(const Image& left, const StereoCamera& cameras) {
   return rectified;
 }
 
-CannyThresholds canny_thresholds(const cv::Mat& gray, const SceneObserver::Params& params) {
+cv::Mat canny_edges(const cv::Mat& gray, const SceneObserver::Params& params) {
+  // The gradients once, for the thresholds and for Canny itself (as Canny
+  // would take them: 3x3 Sobel, borders replicated).
+  cv::Mat dx, dy;
+  cv::Sobel(gray, dx, CV_16S, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Sobel(gray, dy, CV_16S, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
   // The strongest edges: the 99.9th percentile of the Sobel magnitude (the
   // board's outline and rims are about a thousandth of an image's pixels).
-  cv::Mat gx, gy, magnitude;
-  cv::Sobel(gray, gx, CV_32F, 1, 0);
-  cv::Sobel(gray, gy, CV_32F, 0, 1);
-  cv::magnitude(gx, gy, magnitude);
-  std::vector<float> values(magnitude.begin<float>(), magnitude.end<float>());
-  const auto top = values.begin() + static_cast<std::ptrdiff_t>(0.999 * (values.size() - 1));
-  std::nth_element(values.begin(), top, values.end());
+  std::vector<float> magnitudes;
+  magnitudes.reserve(gray.total());
+  for (int y = 0; y < gray.rows; ++y) {
+    const std::int16_t *gx = dx.ptr<std::int16_t>(y), *gy = dy.ptr<std::int16_t>(y);
+    for (int x = 0; x < gray.cols; ++x) magnitudes.push_back(std::hypot(static_cast<float>(gx[x]), static_cast<float>(gy[x])));
+  }
+  const auto top = magnitudes.begin() + static_cast<std::ptrdiff_t>(0.999 * (magnitudes.size() - 1));
+  std::nth_element(magnitudes.begin(), top, magnitudes.end());
   const double scale = std::clamp(*top / params.strong_edge, 0.0, 1.0);
   // The noise floor: each 3x3 Sobel component of pure noise has a sigma of
   // sqrt(12) sigma = 3.46 sigma; the magnitude of noise exceeds 2.6 of those
@@ -66,16 +73,10 @@ CannyThresholds canny_thresholds(const cv::Mat& gray, const SceneObserver::Param
   // edge, and 3.7 (13 sigma) in one pixel of a thousand, too few to seed
   // chains of their own.
   const double sigma = image_noise_sigma(gray);
-  CannyThresholds t;
-  t.low = std::max(params.canny_low * scale, 9.0 * sigma);
-  t.high = std::max({params.canny_high * scale, 13.0 * sigma, t.low});
-  return t;
-}
-
-cv::Mat canny_edges(const cv::Mat& gray, const SceneObserver::Params& params) {
-  const CannyThresholds t = canny_thresholds(gray, params);
+  const double low = std::max(params.canny_low * scale, 9.0 * sigma);
+  const double high = std::max({params.canny_high * scale, 13.0 * sigma, low});
   cv::Mat edges;
-  cv::Canny(gray, edges, t.low, t.high, 3, true);
+  cv::Canny(dx, dy, edges, low, high, true);
   return edges;
 }
 

@@ -14,18 +14,11 @@ namespace l2s::detail {
 /// (plumb_bob or equidistant).
 cv::Mat rectified_left_gray(const Image& left, const StereoCamera& cameras);
 
-/// Canny hysteresis thresholds [Sobel magnitude] for one image.
-struct CannyThresholds {
-  double low = 0.0, high = 0.0;
-};
-
-/// The observer's thresholds (SceneObserver::Params: canny_low, canny_high,
-/// strong_edge) adapted to `gray`: scaled down when its strongest edges are
-/// weaker than strong_edge, as a dark or flat exposure lowers every edge's
-/// step by the same share, but never into its noise.
-CannyThresholds canny_thresholds(const cv::Mat& gray, const SceneObserver::Params& params);
-
-/// Canny edges of an 8-bit gray image (255 on edges) with canny_thresholds.
+/// Canny edges of an 8-bit gray image (255 on edges) with the observer's
+/// thresholds (SceneObserver::Params: canny_low, canny_high, strong_edge)
+/// adapted to it: scaled down when its strongest edges are weaker than
+/// strong_edge, as a dark or flat exposure lowers every edge's step by the
+/// same share, but never into its noise.
 cv::Mat canny_edges(const cv::Mat& gray, const SceneObserver::Params& params);
 
 /// Those edges and, for every pixel, the distance to the nearest edge pixel,

@@ -46,11 +46,11 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
           format("off the board, lidar depths tilt %.2f deg against the stereo depths (a rotation error; the board "
                  "may have moved between the lidar sweep and the images)",
                  s.depth_tilt / kDeg));
-  if (s.depth_points >= 100 && s.depth_agreement < p.suspect_depth_agreement)  // fewer: too little to judge
-    (s.depth_agreement < p.failed_depth_agreement ? j.failed : j.suspect)
-        .push_back(format("only %.0f %% of the lidar returns agree with the stereo depth at their pixels (a right "
-                          "transform has most agree)",
-                          100.0 * s.depth_agreement));
+  if (s.depth_points >= 100)  // fewer: too little to judge by
+    j.grade(1.0 - s.depth_agreement, 1.0 - p.suspect_depth_agreement, 1.0 - p.failed_depth_agreement,
+            format("only %.0f %% of the lidar returns agree with the stereo depth at their pixels (a right "
+                   "transform has most agree)",
+                   100.0 * s.depth_agreement));
   j.grade(s.depth_bias, p.suspect_depth_bias, p.failed_depth_bias,
           format("lidar depths are %+.1f %% off the stereo depths (a wrong target size or baseline, or a shift along "
                  "the view)",
