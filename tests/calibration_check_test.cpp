@@ -13,7 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace l2s {
 namespace {
@@ -186,6 +188,41 @@ TEST(SceneObserver, FindsSilhouettesWithoutRings) {
   EXPECT_TRUE(observed.ring_free);
   ASSERT_GE(observed.scene_edges.size(), 6u);
   for (const auto& edge : observed.scene_edges) EXPECT_NEAR(edge.norm(), 2.0, 1e-9);
+}
+
+// Stripes along the rows (wood grain on a landscape board) give SGBM nothing
+// to match along them; stripes across them, and plain faces, do not count.
+TEST(SceneObserver, MeasuresTheShareOfTextureAlongTheRows) {
+  const int width = 120, height = 80;
+  const auto striped = [&](bool along_rows) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.channels = 1;
+    image.pixels.resize(static_cast<std::size_t>(width) * height);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const int stripe = (along_rows ? y : x) / 3 % 2;
+        image.pixels[static_cast<std::size_t>(y) * width + x] =
+            static_cast<std::uint8_t>(std::clamp(100.0 + 40.0 * stripe + noise(rng), 0.0, 255.0));
+      }
+    return image;
+  };
+  StereoCloud board;
+  for (int y = 10; y < height - 10; ++y)
+    for (int x = 10; x < width - 10; ++x) {
+      board.points.emplace_back(0.0, 0.0, 2.0);
+      board.pixels.emplace_back(x, y);
+    }
+  const SceneObserver observer;
+  EXPECT_GT(observer.row_texture_share(striped(true), board), 0.9);
+  EXPECT_LT(observer.row_texture_share(striped(false), board), 0.05);
+  Image plain = striped(true);
+  std::fill(plain.pixels.begin(), plain.pixels.end(), 120);
+  EXPECT_EQ(observer.row_texture_share(plain, board), 0.0);
+  EXPECT_TRUE(std::isnan(observer.row_texture_share(plain, StereoCloud{})));
 }
 
 TEST(SceneObserver, RejectsInvalidParams) {

@@ -59,12 +59,26 @@ class L2S_EXPORT CalibrationCheck {
     double failed_roll_deg = 2.0;           ///< [deg] >= suspect_roll_deg
     double suspect_outline_deg = 0.25;      ///< [deg] median distance of the lidar board edges from the board's contour (px / fx), > 0
     double failed_outline_deg = 1.0;        ///< [deg] >= suspect_outline_deg
-    double suspect_plane_offset = 0.015;    ///< [m] lidar board returns from the camera's board plane, > 0
+    double suspect_plane_offset = 0.015;    ///< [m] lidar board returns from the camera's board plane (its rims' pose), > 0
     double failed_plane_offset = 0.06;      ///< [m] >= suspect_plane_offset
-    /// The plane offset counts only beyond this disparity error of the stereo
-    /// plane [px]: SGBM's sub-pixel bias moves a far board seen by a short
-    /// baseline by centimetres (0.3 px is 5 cm at 3.9 m with fx B 91 px m), >= 0.
+    /// The plane offset counts only beyond this disparity [px] at the
+    /// board's depth: the rims place a far board seen by a short baseline
+    /// only to a few hundredths of a pixel (0.3 px is 5 cm at 3.9 m with
+    /// fx B 91 px m), >= 0.
     double min_plane_offset_px = 0.3;
+    /// [px] The stereo board plane against the rims' plane: a wrong target
+    /// size scales the rims' depth, not the stereo's (3 % is 1.4 px for the
+    /// paper's rig and board); a wrong baseline the other way round. On
+    /// random scenes it was at most 0.32 px for plain and textured faces, > 0.
+    double suspect_stereo_offset_px = 0.6;
+    double failed_stereo_offset_px = 3.0;   ///< [px] >= suspect_stereo_offset_px
+    /// [px] The suspect level instead, for a face whose texture runs along
+    /// the rows (Scores::stereo_row_texture >= row_texture_share): SGBM
+    /// fills it in from its surroundings, and a wood-grain face was up to
+    /// 2 px off boards its rims placed right; in [suspect_stereo_offset_px,
+    /// failed_stereo_offset_px].
+    double row_texture_stereo_offset_px = 2.5;
+    double row_texture_share = 0.3;  ///< 0..1; on random scenes wood-grain faces measured 0.2-0.9, plain and low-contrast ones at most 0.2
     double suspect_plane_tilt_deg = 1.0;    ///< [deg] lidar board against the camera's, > 0
     double failed_plane_tilt_deg = 4.0;     ///< [deg] >= suspect_plane_tilt_deg
     double suspect_center_offset = 0.012;   ///< [m] lidar hole centres from the camera's holes, in the board plane (a calibration's own centres agree to a few mm), > 0
@@ -119,10 +133,13 @@ class L2S_EXPORT CalibrationCheck {
     int depth_points = 0;           ///< lidar returns compared with stereo
     double depth_bias = kNaN;       ///< median (lidar - stereo) / stereo depth of the returns within 20 %: a scale error (target size, baseline) or a shift along the view
     double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this beyond what a disparity bias of one matching sigma can tilt on that surface: a rotation error about the camera's x / y axes, whatever the translation
-    double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's stereo board plane (+: in front)
-    double plane_offset_px = kNaN;  ///< [px] that distance as a disparity error of the stereo plane at the board's depth (fx B offset / z^2)
+    double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's board plane, the pose its rims give (+: in front)
+    double plane_offset_px = kNaN;  ///< [px] that distance as disparity at the board's depth (fx B offset / z^2)
+    double stereo_offset = kNaN;    ///< [m] the stereo board plane from the rims' plane at the board's centre (+: in front), median over frames: a scale error of the camera (target size, baseline) or stereo's own bias
+    double stereo_offset_px = kNaN; ///< [px] that distance as disparity at the board's depth
+    double stereo_row_texture = kNaN;  ///< share of the board's stereo points whose texture runs along the rows (SceneObserver::row_texture_share), median over frames
     double plane_spread = kNaN;     ///< [m] robust sigma of those distances
-    double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the stereo one: the rotation between them, median over frames (per component, so noise averages out)
+    double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the camera's board pose: the rotation between them, median over frames (per component, so noise averages out)
     double outline_px = kNaN;       ///< [px] median distance, in the image, of lidar board edges from the outline and hole rims
     double outside_fraction = kNaN; ///< share of lidar board returns outside the board (or inside a hole)
     /// [m] In the board plane, the median offset of the lidar hole centres

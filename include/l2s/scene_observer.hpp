@@ -22,6 +22,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +72,9 @@ struct L2S_EXPORT CameraObservation {
   /// metric through the baseline alone, so a wrong target size, which biases
   /// the pose's depth, does not bias it.
   std::optional<Plane> stereo_plane;
+  /// Share of those stereo points whose image texture runs along the rows
+  /// (SceneObserver::row_texture_share), 0..1; NaN when not measured.
+  double stereo_row_texture = std::numeric_limits<double>::quiet_NaN();
   EdgeDistanceMap edges;  ///< of the rectified left image; empty when not kept
   DepthMap depth;         ///< coarse stereo depth; empty when none
 };
@@ -127,6 +131,14 @@ class L2S_EXPORT SceneObserver {
   /// A coarse depth map from a disparity map of the left image (a stereo
   /// pass of the whole frame; `cameras` give fx * B). Empty when `disparity` is.
   DepthMap observe_depth(const DisparityMap& disparity, const StereoCamera& cameras, double depth_noise) const;
+  /// Share of the stereo points `board` (their pixels in `rectified_left`)
+  /// whose texture runs along the rows: a gradient across the rows above
+  /// the noise, and less than half of it along them. SGBM cannot tell where
+  /// along its row such a window matches and fills it in from the
+  /// surroundings: the stereo plane of a wood-grain face with the grain
+  /// along the rows was up to 2 px of disparity off. 0..1, NaN without
+  /// points inside the image.
+  double row_texture_share(const Image& rectified_left, const StereoCloud& board) const;
 
  private:
   Params params_;

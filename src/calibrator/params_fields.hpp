@@ -229,6 +229,10 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("suspect_plane_offset", p.suspect_plane_offset);
   v.field("min_plane_offset_px", p.min_plane_offset_px);
   v.field("failed_plane_offset", p.failed_plane_offset);
+  v.field("suspect_stereo_offset_px", p.suspect_stereo_offset_px);
+  v.field("failed_stereo_offset_px", p.failed_stereo_offset_px);
+  v.field("row_texture_stereo_offset_px", p.row_texture_stereo_offset_px);
+  v.field("row_texture_share", p.row_texture_share);
   v.field("suspect_plane_tilt_deg", p.suspect_plane_tilt_deg);
   v.field("failed_plane_tilt_deg", p.failed_plane_tilt_deg);
   v.field("suspect_center_offset", p.suspect_center_offset);

@@ -38,6 +38,9 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   number("plane_offset_m", s.plane_offset);
   number("plane_offset_px", s.plane_offset_px);
   number("plane_spread_m", s.plane_spread);
+  number("stereo_offset_m", s.stereo_offset);
+  number("stereo_offset_px", s.stereo_offset_px);
+  number("stereo_row_texture", s.stereo_row_texture);
   number("plane_tilt_deg", s.plane_tilt * 180.0 / M_PI);
   number("outline_px", s.outline_px);
   number("outside_fraction", s.outside_fraction);

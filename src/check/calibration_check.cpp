@@ -95,6 +95,11 @@ void CalibrationCheck::Params::validate() const {
   positive(suspect_plane_offset, "suspect_plane_offset");
   ordered(suspect_plane_offset, failed_plane_offset, "failed_plane_offset");
   if (!(min_plane_offset_px >= 0.0)) throw ParamError("min_plane_offset_px", "must be >= 0");
+  positive(suspect_stereo_offset_px, "suspect_stereo_offset_px");
+  ordered(suspect_stereo_offset_px, failed_stereo_offset_px, "failed_stereo_offset_px");
+  ordered(suspect_stereo_offset_px, row_texture_stereo_offset_px, "row_texture_stereo_offset_px");
+  ordered(row_texture_stereo_offset_px, failed_stereo_offset_px, "failed_stereo_offset_px");
+  if (!(row_texture_share >= 0.0 && row_texture_share <= 1.0)) throw ParamError("row_texture_share", "must be in 0..1");
   positive(suspect_plane_tilt_deg, "suspect_plane_tilt_deg");
   ordered(suspect_plane_tilt_deg, failed_plane_tilt_deg, "failed_plane_tilt_deg");
   if (!(suspect_outside_fraction > 0.0 && suspect_outside_fraction < 1.0))

@@ -30,14 +30,17 @@ CameraObservation observe_camera(const Image& left, const CameraInspection& insp
   // first); the check keeps the board in the camera frame of DATASET.md,
   // where the calibrated transform lives: p_camera = R_rect_camera^T p_rect.
   Eigen::Isometry3d T_camera_rect = Eigen::Isometry3d::Identity();
+  const Image& rectified_left = inspection.rectified ? inspection.rectified->left : left;
   if (inspection.rectified) T_camera_rect.linear() = inspection.rectified->R_rect_camera.transpose();
   if (found) {
     if (inspection.refined && inspection.refined->converged)
       out.T_camera_board = T_camera_rect * inspection.refined->T_camera_board;
     else if (inspection.T_camera_board_initial)
       out.T_camera_board = T_camera_rect * *inspection.T_camera_board_initial;
-    if (inspection.board.size() >= 3)
+    if (inspection.board.size() >= 3) {
       out.stereo_plane = Plane(inspection.board_plane).transform(T_camera_rect.linear(), Eigen::Isometry);
+      out.stereo_row_texture = observer.row_texture_share(rectified_left, inspection.board);
+    }
   }
   // The whole frame's disparity: the coarse pass when the board was located
   // first (the full-resolution pass then covers its region only). Disparity

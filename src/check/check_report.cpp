@@ -29,6 +29,11 @@ void describe_scores(std::ostringstream& out, const CalibrationCheck::Scores& s,
     out << indent
         << line("board      plane offset %+.1f mm (spread %.1f mm), tilt %.2f deg\n", s.plane_offset * 1e3,
                 s.plane_spread * 1e3, s.plane_tilt / kDeg);
+  if (std::isfinite(s.stereo_offset))
+    out << indent
+        << line("stereo     board plane %+.1f mm (%+.2f px) from the rims' pose; %.0f %% of its points textured "
+                "along the rows only\n",
+                s.stereo_offset * 1e3, s.stereo_offset_px, 100.0 * s.stereo_row_texture);
   if (std::isfinite(s.outside_fraction))
     out << indent
         << line("outline    lidar board edges %.1f px from the outline and rims; %.1f %% of returns off the board\n",

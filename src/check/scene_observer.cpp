@@ -4,6 +4,8 @@
 
 #include <l2s/scene_observer.hpp>
 
+#include "camera/cv_image.hpp"
+#include "camera/noise_level.hpp"
 #include "check/image_edges.hpp"
 #include "check/lidar_discontinuities.hpp"
 #include "plane/plane_fit.hpp"
@@ -12,6 +14,7 @@
 
 #include <l2s/error.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -163,6 +166,43 @@ DepthMap SceneObserver::observe_depth(const DisparityMap& disparity, const Stere
     }
   drop_near_jumps(out, params_.depth_jump_margin);
   return out;
+}
+
+double SceneObserver::row_texture_share(const Image& rectified_left, const StereoCloud& board) const {
+  if (board.pixels.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const cv::Mat gray = detail::gray_mat(rectified_left, "left");
+  // The gradients on the board's bounding box only, averaged over a
+  // matching window (SGBM's default 5 px).
+  const auto inside = [&](const Eigen::Vector2i& p) {
+    return p.x() >= 0 && p.y() >= 0 && p.x() < gray.cols && p.y() < gray.rows;
+  };
+  cv::Rect box;
+  for (const Eigen::Vector2i& p : board.pixels)
+    if (inside(p)) box = box.empty() ? cv::Rect(p.x(), p.y(), 1, 1) : box | cv::Rect(p.x(), p.y(), 1, 1);
+  if (box.empty()) return std::numeric_limits<double>::quiet_NaN();
+  constexpr int kWindow = 5;
+  const cv::Rect padded = (box + cv::Size(2 * kWindow, 2 * kWindow) - cv::Point(kWindow, kWindow)) &
+                          cv::Rect(0, 0, gray.cols, gray.rows);
+  cv::Mat across, along;  // the gradient across the rows (d/dy) and along them (d/dx)
+  cv::Sobel(gray(padded), across, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  cv::Sobel(gray(padded), along, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  across = cv::abs(across);
+  along = cv::abs(along);
+  cv::blur(across, across, cv::Size(kWindow, kWindow));
+  cv::blur(along, along, cv::Size(kWindow, kWindow));
+  constexpr double kNoiseMeanPerSigma = 2.76;  // mean |Sobel| of pure noise: 0.8 * sqrt(12) sigma
+  const double noise_floor = 2.0 * kNoiseMeanPerSigma * detail::image_noise_sigma(gray);
+  const std::size_t step = std::max<std::size_t>(1, board.pixels.size() / 4000);
+  std::size_t rows_only = 0, sampled = 0;
+  for (std::size_t i = 0; i < board.pixels.size(); i += step) {
+    if (!inside(board.pixels[i])) continue;
+    const int x = board.pixels[i].x() - padded.x, y = board.pixels[i].y() - padded.y;
+    const float a = across.at<float>(y, x);
+    rows_only += a > noise_floor && along.at<float>(y, x) < 0.5f * a;
+    ++sampled;
+  }
+  return sampled ? static_cast<double>(rows_only) / static_cast<double>(sampled)
+                 : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace l2s

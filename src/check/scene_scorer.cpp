@@ -66,7 +66,8 @@ EdgeSums SceneScorer::edges(const Eigen::Isometry3d& T_camera_lidar, int level) 
 }
 
 void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationCheck::Scores& scores) const {
-  std::vector<double> offsets, offsets_px, spreads, outline_px, center_x, center_y;
+  std::vector<double> offsets, offsets_px, stereo_offsets, stereo_offsets_px, row_textures, spreads, outline_px,
+      center_x, center_y;
   std::array<std::vector<double>, 3> tilts;
   std::size_t outside = 0, returns = 0;
   const auto holes = target_.hole_centers();
@@ -75,7 +76,14 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
     offsets.push_back(fit.offset);
     // The board's depth, which sets the disparity a plane offset amounts to.
     const double depth = frame->camera.T_camera_board->translation().z();
-    if (view_.fx_baseline > 0.0 && depth > 0.1) offsets_px.push_back(fit.offset * view_.fx_baseline / (depth * depth));
+    const double px_per_m =
+        view_.fx_baseline > 0.0 && depth > 0.1 ? view_.fx_baseline / (depth * depth) : CalibrationCheck::Scores::kNaN;
+    if (std::isfinite(px_per_m)) offsets_px.push_back(fit.offset * px_per_m);
+    if (std::isfinite(frame->camera.stereo_row_texture)) row_textures.push_back(frame->camera.stereo_row_texture);
+    if (std::isfinite(fit.stereo_offset)) {
+      stereo_offsets.push_back(fit.stereo_offset);
+      if (std::isfinite(px_per_m)) stereo_offsets_px.push_back(fit.stereo_offset * px_per_m);
+    }
     spreads.push_back(fit.spread);
     for (int k = 0; k < 3; ++k) tilts[k].push_back(fit.tilt[k]);
     const Eigen::Isometry3d T_board_lidar = frame->camera.T_camera_board->inverse() * T_camera_lidar;
@@ -104,6 +112,9 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   if (board_frames_.empty()) return;
   scores.plane_offset = median(offsets);
   if (!offsets_px.empty()) scores.plane_offset_px = median(offsets_px);
+  if (!stereo_offsets.empty()) scores.stereo_offset = median(stereo_offsets);
+  if (!stereo_offsets_px.empty()) scores.stereo_offset_px = median(stereo_offsets_px);
+  if (!row_textures.empty()) scores.stereo_row_texture = median(row_textures);
   scores.plane_spread = median(spreads);
   const Eigen::Vector3d tilt(median(tilts[0]), median(tilts[1]), median(tilts[2]));
   scores.plane_tilt = std::asin(std::min(1.0, tilt.norm()));
@@ -113,23 +124,27 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
 }
 
 SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eigen::Isometry3d& T_camera_lidar) const {
-  // Depth from the stereo plane, metric by the baseline alone (a wrong
-  // target size scales the pose's depth); the pose's plane is the fallback.
-  // Orientation from the pose: fitted to the rims in both images it is
-  // tilted by tenths of a degree at most, while the stereo points of a board
-  // before a near textured background (matches fattened over its edges and
-  // into its holes) tilt their plane by degrees.
+  // The plane of the pose the rims give in both images: placed to a few
+  // hundredths of a pixel of disparity and tilted by tenths of a degree at
+  // most. Stereo points of the board are not as good a reference: a face
+  // without texture across the rows is matched by smoothness from its
+  // edges (wood grain along the rows: 1-2 px off), and matches fattened over
+  // its edges and into its holes tilt their plane by degrees. The stereo
+  // plane is compared with the rims' instead: a wrong target size scales
+  // the rims' depth but not the stereo's.
   const Eigen::Isometry3d& T_camera_board = *frame.camera.T_camera_board;
-  const Plane pose_plane(T_camera_board.linear().col(2), T_camera_board.translation());
-  const Plane plane = frame.camera.stereo_plane ? *frame.camera.stereo_plane : pose_plane;
-  const double towards_camera = plane.offset() >= 0.0 ? 1.0 : -1.0;
+  Plane plane(T_camera_board.linear().col(2), T_camera_board.translation());
+  if (plane.offset() < 0.0) plane = Plane(-plane.normal(), T_camera_board.translation());  // normal towards the camera
+  PlaneFit fit;
+  if (frame.camera.stereo_plane)
+    fit.stereo_offset = -frame.camera.stereo_plane->signedDistance(T_camera_board.translation()) *
+                        (frame.camera.stereo_plane->offset() >= 0.0 ? 1.0 : -1.0);
   std::vector<Eigen::Vector3d> in_camera;
   std::vector<double> heights;
   for (const auto& p : frame.lidar.board) {
     in_camera.push_back(T_camera_lidar * p);
-    heights.push_back(towards_camera * plane.signedDistance(in_camera.back()));
+    heights.push_back(plane.signedDistance(in_camera.back()));
   }
-  PlaneFit fit;
   fit.offset = median(heights);
   std::vector<double> deviations;
   for (const double h : heights) deviations.push_back(std::abs(h - fit.offset));
@@ -137,8 +152,7 @@ SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eige
   std::vector<std::size_t> all(in_camera.size());
   std::iota(all.begin(), all.end(), 0);
   Eigen::Vector3d n_lidar = fit_plane(in_camera, all).normal();
-  Eigen::Vector3d n_camera = pose_plane.normal();
-  if (n_camera.dot(plane.normal()) < 0.0) n_camera = -n_camera;
+  const Eigen::Vector3d n_camera = plane.normal();
   if (n_lidar.dot(n_camera) < 0.0) n_lidar = -n_lidar;
   fit.tilt = n_camera.cross(n_lidar);
   return fit;

@@ -7,6 +7,7 @@
 #include <l2s/calibration_check.hpp>
 
 #include <array>
+#include <limits>
 #include <vector>
 
 namespace l2s::detail {
@@ -50,7 +51,8 @@ class SceneScorer {
 
  private:
   struct PlaneFit {
-    double offset = 0.0;  // [m] median height of the lidar board returns over the camera's plane
+    double offset = 0.0;  // [m] median height of the lidar board returns over the rims' plane
+    double stereo_offset = std::numeric_limits<double>::quiet_NaN();  // [m] height of the stereo plane over it at the board's centre
     double spread = 0.0;  // [m] their robust sigma
     // Their plane against the camera's, as a rotation vector (n_camera x
     // n_lidar, both facing the camera; its length the sine of the tilt).

@@ -37,6 +37,12 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
     j.grade(s.plane_offset, p.suspect_plane_offset, p.failed_plane_offset,
             format("lidar board returns lie %.1f mm (%.2f px of disparity) from the camera's board plane",
                    s.plane_offset * 1e3, s.plane_offset_px));
+  const bool row_texture = s.stereo_row_texture >= p.row_texture_share;
+  j.grade(s.stereo_offset_px, row_texture ? p.row_texture_stereo_offset_px : p.suspect_stereo_offset_px,
+          p.failed_stereo_offset_px,
+          format("the camera's stereo places the board %.1f mm (%.2f px of disparity) from where its hole rims do "
+                 "(a target.yaml of another size than the board, or a wrong baseline)",
+                 s.stereo_offset * 1e3, s.stereo_offset_px));
   j.grade(s.plane_tilt, p.suspect_plane_tilt_deg * kDeg, p.failed_plane_tilt_deg * kDeg,
           format("the lidar board is tilted %.2f deg against the camera's", s.plane_tilt / kDeg));
   j.grade(s.outline_px / fx, p.suspect_outline_deg * kDeg, p.failed_outline_deg * kDeg,
