@@ -52,8 +52,9 @@ class SceneScorer {
  private:
   struct PlaneFit {
     double offset = 0.0;  // [m] median height of the lidar board returns over the rims' plane
-    double stereo_offset = std::numeric_limits<double>::quiet_NaN();  // [m] height of the stereo plane over it at the board's centre
     double spread = 0.0;  // [m] their robust sigma
+    // [m] height of the stereo plane over the rims' plane at the board's centre
+    double stereo_offset = std::numeric_limits<double>::quiet_NaN();
     // Their plane against the camera's, as a rotation vector (n_camera x
     // n_lidar, both facing the camera; its length the sine of the tilt).
     // Kept as a vector so that frames average their noise out: the median
