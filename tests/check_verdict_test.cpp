@@ -152,5 +152,25 @@ TEST(CheckVerdict, MisalignmentCountsOnlyAtARealOptimum) {
   EXPECT_EQ(judged(0.3, 0.2), Verdict::Ok);
 }
 
+// A good random-scene result (0.11 deg off) had its best alignment 0.38 deg
+// away, but within the half width of the score's peak in every degree of
+// freedom: the score could not tell them apart. A wrong one (1.78 deg off)
+// had it 0.35 deg away at six half widths.
+TEST(CheckVerdict, MisalignmentCountsOnlyBeyondThePeaksWidth) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double offset_rx) {
+    CalibrationCheck::Report report = agreeing();
+    report.misalignment = 0.38 * M_PI / 180;
+    report.misalignment_gain = 0.17;
+    report.optimum_edge_score = 0.58;
+    for (auto& peak : report.peaks) peak.width = 0.01;  // [rad or m]
+    report.peaks[0].offset = offset_rx;
+    detail::judge(report, params, 1000.0);
+    return report.verdict;
+  };
+  EXPECT_EQ(judged(0.0044), Verdict::Ok);        // 0.25 deg: within the 0.57 deg half width
+  EXPECT_EQ(judged(0.037), Verdict::Suspect);    // 2.1 deg: beyond it
+}
+
 }  // namespace
 }  // namespace l2s

@@ -96,6 +96,13 @@ class L2S_EXPORT CalibrationCheck {
     /// optimum (a shadow's edge, texture) is where six degrees of freedom
     /// found a little more to lean on, not where the scene lies, 0..1.
     double min_optimum_edge_score = 0.4;
+    /// ... and only when that alignment lies beyond this many half widths
+    /// of the score's peak (DofPeak::offset against DofPeak::width) in at
+    /// least one degree of freedom: within its peak in every one, the score
+    /// cannot tell the transform from the optimum (a good random-scene
+    /// result was 0.38 deg "misaligned" at 0.67 widths; wrong ones were
+    /// 1.7-6.6 widths away), >= 0.
+    double min_misalignment_widths = 1.0;
     /// Share of the lidar returns of the scene whose depth agrees with
     /// stereo below which the result is suspect / failed: a right transform
     /// has most agree (0.75-1 on the randomised scenes), a wrong one puts

@@ -114,6 +114,7 @@ void CalibrationCheck::Params::validate() const {
     throw ParamError("min_misalignment_gain", "must be in [0, 1)");
   if (!(min_optimum_edge_score >= 0.0 && min_optimum_edge_score <= 1.0))
     throw ParamError("min_optimum_edge_score", "must be in [0, 1]");
+  if (!(min_misalignment_widths >= 0.0)) throw ParamError("min_misalignment_widths", "must be >= 0");
   if (!(suspect_depth_agreement >= 0.0 && suspect_depth_agreement <= 1.0))
     throw ParamError("suspect_depth_agreement", "must be in [0, 1]");
   if (!(failed_depth_agreement >= 0.0 && failed_depth_agreement <= suspect_depth_agreement))

@@ -4,6 +4,7 @@
 
 #include "check/verdict.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -71,6 +72,15 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
                  100.0 * s.outside_fraction));
 }
 
+/// Does the best alignment near the transform lie beyond `widths` half
+/// widths of the score's peak along some degree of freedom? A peak without a
+/// measured width counts as narrow.
+bool beyond_its_peak(const std::array<CalibrationCheck::DofPeak, 6>& peaks, double widths) {
+  for (const auto& peak : peaks)
+    if (!(std::abs(peak.offset) <= widths * peak.width) || peak.width <= 0.0) return true;
+  return false;
+}
+
 void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, Judgement& j) {
   if (r.edge_frames == 0) {
     j.suspect.push_back("no image edges to check against: only the board was checked");
@@ -89,8 +99,9 @@ void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Para
           format("the lidar edges align %.0f %% better with the image elsewhere (%+.2f ", 100.0 * r.alignment_gain,
                  peak.best_offset * (peak.rotation ? 1.0 / kDeg : 100.0)) +
               (peak.rotation ? "deg in " : "cm in ") + peak.name + ")");
-  const bool misalignment_counts =
-      r.misalignment_gain >= p.min_misalignment_gain && r.optimum_edge_score >= p.min_optimum_edge_score;
+  const bool misalignment_counts = r.misalignment_gain >= p.min_misalignment_gain &&
+                                   r.optimum_edge_score >= p.min_optimum_edge_score &&
+                                   beyond_its_peak(r.peaks, p.min_misalignment_widths);
   if (misalignment_counts)
     j.grade(r.misalignment, p.suspect_misalignment_deg * kDeg, p.failed_misalignment_deg * kDeg,
             format("the lidar edges align best with the image %.1f px (%.2f deg) away", r.misalignment_px,
