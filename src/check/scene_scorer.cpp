@@ -133,12 +133,10 @@ SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eige
   // plane is compared with the rims' instead: a wrong target size scales
   // the rims' depth but not the stereo's.
   const Eigen::Isometry3d& T_camera_board = *frame.camera.T_camera_board;
-  Plane plane(T_camera_board.linear().col(2), T_camera_board.translation());
-  if (plane.offset() < 0.0) plane = Plane(-plane.normal(), T_camera_board.translation());  // normal towards the camera
+  const Plane plane = facing_origin(Plane(T_camera_board.linear().col(2), T_camera_board.translation()));
   PlaneFit fit;
   if (frame.camera.stereo_plane)
-    fit.stereo_offset = -frame.camera.stereo_plane->signedDistance(T_camera_board.translation()) *
-                        (frame.camera.stereo_plane->offset() >= 0.0 ? 1.0 : -1.0);
+    fit.stereo_offset = -facing_origin(*frame.camera.stereo_plane).signedDistance(T_camera_board.translation());
   std::vector<Eigen::Vector3d> in_camera;
   std::vector<double> heights;
   for (const auto& p : frame.lidar.board) {
