@@ -284,10 +284,10 @@ const PlaneSegmenter::Result* find_candidates(const CameraFrame& f, CameraInspec
 }
 
 /// The default preset's last step: the centres from the board pose fitted to
-/// the hole rims in both images. A refinement that stops on its round limit
-/// is usually still close (rms ~0.1 px); keeping the stereo circles for such
-/// frames measured better on the simulated suite than dropping them, and the
-/// accumulator's median keeps the refined majority in charge.
+/// the hole rims in both images. A frame whose refinement fails keeps the
+/// stereo circles (rim_rms_px stays 0): a pose made of such frames only still
+/// gets a result, and a pose with enough refined frames leaves them out
+/// (pose_registration.cpp).
 void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
   if (!attempt.refined) return;
   if (attempt.refined->converged) {

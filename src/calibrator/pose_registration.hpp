@@ -28,10 +28,13 @@ using StreamNames = std::array<std::string, 2>;
 /// camera_* fields stream 1, T_lidar_camera the fitted T_stream0_stream1.
 /// `lidar_planes`: stream 0's board plane per frame, when known; with them
 /// (and params.refine_with_board_planes) the fit is refined with each used
-/// pose's planes, stream 1's through its centres.
+/// pose's planes, stream 1's through its centres. `coarse_source`: frames
+/// whose stream 1 centres are a fallback (the camera's stereo circle fit when
+/// its rim refinement failed); a pose with enough other frames leaves them out.
 bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
                            const Calibrator::Params& params, Calibrator::Result& result,
-                           const std::vector<std::optional<Plane>>& lidar_planes = {});
+                           const std::vector<std::optional<Plane>>& lidar_planes = {},
+                           const std::vector<bool>& coarse_source = {});
 
 /// The joint fit of result.poses again with every pose's camera centres
 /// relabelled by `permutation` (the labels the scene prefers); updates the
