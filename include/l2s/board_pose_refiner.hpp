@@ -26,6 +26,12 @@ class L2S_EXPORT BoardPoseRefiner {
     double final_search_range_px = 2.0;  ///< [px] the range halves each round down to this, so a nearby parallel edge (e.g. the other rim) cannot capture samples once aligned, 1..search_range_px
     double search_step_px = 0.25;  ///< [px] spacing of the gradient samples on the search line; the 3-point parabolic peak fit is biased by a fraction of the spacing (0.5 px left ~0.5 mm of depth per hole at 3.5 m), 0.1..2
     double min_rim_separation_px = 3.0;  ///< [px] back-rim samples closer than this to the front rim's projection are dropped: the two edges (hole wall between) blend and bias the peak, 0..10
+    /// When the refinement fails taking the strongest edge near each rim,
+    /// try again taking the first edge met coming from the board's side (its
+    /// face, or a back rim's wall): a textured background seen through the
+    /// holes (bricks, tiles) has edges next to the rims that can be stronger
+    /// than a low-contrast rim
+    bool first_edge_from_board = true;
     double min_edge_strength = 6.0;  ///< [gray levels / px] weakest gradient accepted as the rim on a board of ordinary contrast, >= 0
     /// ... and when the refinement fails with it, on a low-contrast board (a
     /// gray board before a gray wall, slightly blurred: rims of 3-5 gray
@@ -64,6 +70,7 @@ class L2S_EXPORT BoardPoseRefiner {
     double edge_fraction = 0.0;  ///< share of the rim samples searched when the sample set was last chosen that found a strong edge (last round)
     double last_step_px = 0.0;   ///< [px] largest image motion of a used sample in the last round
     double edge_strength = 0.0;  ///< [gray levels / px] the weakest gradient accepted as a rim (min_edge_strength, or the lowered one when the retry converged)
+    bool edges_from_board_side = false;  ///< the edges were the first from the board's side, not the strongest (first_edge_from_board's retry)
     /// Share of samples on circles of 1.35 hole radii (the board's face
     /// around each hole) that find an edge of that strength at the final
     /// pose: texture, not rims. A true board's face is much smoother than its

@@ -244,8 +244,9 @@ void describe_refinement(std::string& out, const CameraInspection& in, const Boa
   if (in.refined) {
     const auto& r = *in.refined;
     if (r.converged)
-      append(out, "  rim refinement   converged: rms %.2f px over %d samples, %d rounds\n",
-             r.rms_px, r.samples, r.iterations);
+      append(out, "  rim refinement   converged: rms %.2f px over %d samples, %d rounds%s\n",
+             r.rms_px, r.samples, r.iterations,
+             r.edges_from_board_side ? " (each rim's first edge from the board's face, not its strongest)" : "");
     else
       append(out, "  rim refinement   did not converge (%s): rms %.2f px, %d samples, %d rounds\n",
              r.reason.c_str(), r.rms_px, r.samples, r.iterations);

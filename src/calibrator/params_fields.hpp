@@ -146,6 +146,7 @@ void visit(V& v, BoardPoseRefiner::Params& p) {
   v.field("samples_per_rim", p.samples_per_rim);
   v.field("search_range_px", p.search_range_px);
   v.field("search_step_px", p.search_step_px);
+  v.field("first_edge_from_board", p.first_edge_from_board);
   v.field("min_edge_strength", p.min_edge_strength);
   v.field("rim_contrast_fraction", p.rim_contrast_fraction);
   v.field("edge_noise_factor", p.edge_noise_factor);

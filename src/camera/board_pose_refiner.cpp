@@ -211,6 +211,14 @@ struct RimPixel {
   Eigen::Vector2d normal;  // unit
 };
 
+/// The first edge from the board's side counts as the rim only when it is at
+/// least this share of the strongest edge in the search window: weaker bumps
+/// nearer the face are its texture or noise. On three random scenes before
+/// tiles and bricks (1653306487, 1060328696, 2031326890; 3 frames each) 0.3
+/// refined 9 of 9 frames to 0.3-4.5 mm; 0 refined 7 (two kept circles 6-7
+/// mm off), 0.5 refined 6.
+constexpr double kFirstEdgeShare = 0.3;
+
 /// The search half of a round: which (view, rim point) samples are used, and
 /// where each finds its edge along the rim's normal.
 ///
@@ -269,7 +277,24 @@ class EdgeSearch {
     int lo = 0, hi = 2 * steps_;  // profile indices (offset -steps..steps)
     if (X.z() != 0.0 && !clip_back_rim_window(view, T, X, at, locked, lo, hi)) return Outcome::NotSearched;
     if (!sample_profile(view, at, lo, hi)) return Outcome::NotSearched;
-    return peak(lo, hi, along) ? Outcome::Edge : Outcome::NoEdge;
+    const int board_side = params_.first_edge_from_board ? board_side_of(view, T, k, at) : 0;
+    return peak(lo, hi, board_side, along) ? Outcome::Edge : Outcome::NoEdge;
+  }
+
+  /// +1 when the board's material (the face beside a front rim, the hole's
+  /// wall beside a back rim) lies along +normal from rim point k's
+  /// projection, -1 when along -normal, 0 when it cannot be told.
+  int board_side_of(const View& view, const Eigen::Isometry3d& T, std::size_t k, const RimPixel& at) const {
+    const Eigen::Vector3d& X = rims_.points[k];
+    const Eigen::Vector2d radial = (X.head<2>() - rims_.centers[rims_.hole[k]]).normalized();
+    // The face lies outside the front rim; the wall of a back rim towards the front rim.
+    const Eigen::Vector3d toward =
+        X.z() == 0.0 ? Eigen::Vector3d(X.x() + 1e-3 * radial.x(), X.y() + 1e-3 * radial.y(), 0.0)
+                     : Eigen::Vector3d(X.x(), X.y(), 0.0);
+    Eigen::Vector2d u;
+    if (!view.project(T * toward, u, nullptr)) return 0;
+    const double side = at.normal.dot(u - at.u);
+    return side > 0.0 ? 1 : side < 0.0 ? -1 : 0;
   }
 
   /// Projection and rim normal of rim point k; false when it falls outside
@@ -326,22 +351,51 @@ class EdgeSearch {
     return inside;
   }
 
-  /// The profile's strongest inner peak, refined by a parabola, as a
-  /// distance along the normal [px]; false when it is too weak or the
-  /// profile still rises at a clipped end (the peak is the front rim's,
-  /// beyond).
-  bool peak(int lo, int hi, double& along) const {
+  /// The rim's peak in the profile, refined by a parabola, as a distance
+  /// along the normal [px]; false when it is too weak or the profile still
+  /// rises at a clipped end (the peak is the front rim's, beyond).
+  ///
+  /// With `board_side` (+1 / -1: the board's material lies towards higher /
+  /// lower indices) it is the first peak met coming from the board's side,
+  /// not the strongest: the board's face beside a rim is smooth, what is
+  /// seen through the hole need not be. Bricks or tiles behind a hole put
+  /// edges a pixel or two inside the rim that are stronger than a
+  /// low-contrast rim, and the strongest peak then follows them: on a gray
+  /// board before bricks (random scene 1037259372) a refinement started at
+  /// the true pose did not converge and ended 31 mm and 4.7 deg off (1.8 mm,
+  /// 0.23 deg and converged with this rule). A peak is a sample that is the
+  /// largest within +-1 px and reaches min_edge_strength and kFirstEdgeShare
+  /// of the strongest.
+  bool peak(int lo, int hi, int board_side, double& along) const {
     const std::vector<double>& profile = profile_;
     int best = lo + 1;
     for (int i = lo + 1; i < hi; ++i)
       if (profile[i] > profile[best]) best = i;
     if (profile[best] < params_.min_edge_strength) return false;
     if ((lo > 0 && profile[lo] > profile[best]) || (hi < 2 * steps_ && profile[hi] > profile[best])) return false;
+    if (board_side != 0)
+      best = first_peak_from(board_side > 0 ? hi - 1 : lo + 1, -board_side, lo, hi,
+                             std::max(params_.min_edge_strength, kFirstEdgeShare * profile[best]));
     const double a = profile[best - 1], b = profile[best], c = profile[best + 1];
     const double denom = a - 2.0 * b + c;
     const double offset = denom < 0.0 ? 0.5 * (a - c) / denom : 0.0;
     along = (best - steps_ + offset) * params_.search_step_px;
     return true;
+  }
+
+  /// The first inner index from `start`, walking by `step` (+-1), that
+  /// reaches `threshold` and is the largest within +-1 px; the strongest
+  /// sample does, so one is always found.
+  int first_peak_from(int start, int step, int lo, int hi, double threshold) const {
+    const int reach = std::max(1, static_cast<int>(std::lround(1.0 / params_.search_step_px)));
+    for (int i = start; i > lo && i < hi; i += step) {
+      if (profile_[i] < threshold) continue;
+      bool largest = true;
+      for (int j = std::max(lo, i - reach); j <= std::min(hi, i + reach) && largest; ++j)
+        largest = profile_[j] <= profile_[i];
+      if (largest) return i;
+    }
+    return start;
   }
 
   const Params& params_;
@@ -604,30 +658,47 @@ double face_edge_fraction(const Params& params, const Target& target, const std:
   return searched > 0 ? static_cast<double>(samples.size()) / searched : 0.0;
 }
 
-/// The rounds with min_edge_strength, and when they fail, once more with the
-/// threshold lowered to the rims' own contrast (edge_strength()).
+/// The rounds with min_edge_strength, taking the strongest edge near each
+/// rim; when they fail, again taking the first edge from the board's side
+/// (first_edge_from_board); then the strongest edges once more with the
+/// threshold lowered to the rims' own contrast (edge_strength()). The first
+/// attempt that converges is kept, else the first one's failure: a
+/// refinement that diverged there marks a wrong hypothesis
+/// (camera_branch.cpp), and the first-edge rule can settle near such a pose
+/// without converging (random scene 11: a brick-red board rolled 90 deg by
+/// its circles, 32 % of the rims on an edge, where the strongest edges
+/// diverged to rms 50 px). Not the first edge at the lowered threshold: the
+/// first bump above 2-3 gray levels / px is found on any wall, and a patch of
+/// tiled wall 5-6 m away converged as the board (random scene 1405632196).
 BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& views, const Rims& rims,
                                const std::vector<Sample>& anchors, const Eigen::Isometry3d& T_camera_board,
                                const cv::Mat& pixels_left, const cv::Mat& pixels_right) {
-  BoardPoseRefiner::Result result;
-  result.T_camera_board = T_camera_board;
-  result.edge_strength = params.min_edge_strength;
-  Alignment(params, rims, views, anchors).run(T_camera_board, result);
-  result.converged = result.reason.empty();
-  if (result.converged) return result;
+  const auto attempt = [&](const Params& p) {
+    BoardPoseRefiner::Result result;
+    result.T_camera_board = T_camera_board;
+    result.edge_strength = p.min_edge_strength;
+    result.edges_from_board_side = p.first_edge_from_board;
+    Alignment(p, rims, views, anchors).run(T_camera_board, result);
+    result.converged = result.reason.empty();
+    return result;
+  };
+  Params strongest = params;
+  strongest.first_edge_from_board = false;
+  const BoardPoseRefiner::Result first = attempt(strongest);
+  if (first.converged) return first;
+  if (params.first_edge_from_board) {
+    const BoardPoseRefiner::Result board_side = attempt(params);
+    if (board_side.converged) return board_side;
+  }
   // A weaker threshold only when the ordinary one failed: on a textured
   // board (wood grain) a lower one lets the grain beside the rims win the
   // search, and a refinement that converged at 6 would end ~7 mm off.
-  Params weaker = params;
-  weaker.min_edge_strength = edge_strength(rim_contrast(views, rims, T_camera_board, params),
-                                           gradient_noise(pixels_left, pixels_right), params);
-  if (!(weaker.min_edge_strength < params.min_edge_strength)) return result;
-  BoardPoseRefiner::Result retry = result;
-  retry.reason.clear();
-  retry.edge_strength = weaker.min_edge_strength;
-  Alignment(weaker, rims, views, anchors).run(T_camera_board, retry);
-  retry.converged = retry.reason.empty();
-  return retry.converged ? retry : result;
+  const double weaker = edge_strength(rim_contrast(views, rims, T_camera_board, params),
+                                      gradient_noise(pixels_left, pixels_right), params);
+  if (!(weaker < params.min_edge_strength)) return first;
+  strongest.min_edge_strength = weaker;
+  const BoardPoseRefiner::Result retry = attempt(strongest);
+  return retry.converged ? retry : first;
 }
 
 }  // namespace
