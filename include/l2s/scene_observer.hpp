@@ -68,6 +68,7 @@ struct L2S_EXPORT LidarObservation {
 /// The camera side of one frame (the dataset's camera frame, DATASET.md).
 struct L2S_EXPORT CameraObservation {
   std::optional<Eigen::Isometry3d> T_camera_board;  ///< the camera branch's board pose, when it found the board
+  bool board_pose_refined = false;  ///< T_camera_board is the rim refinement's, not the stereo circles'
   /// The board plane fitted to the stereo points (normal towards the camera):
   /// metric through the baseline alone, so a wrong target size, which biases
   /// the pose's depth, does not bias it.

@@ -60,7 +60,9 @@ struct Calibrator::Impl {
   // Ring-free lidars: the camera's view of the board from a frame of the
   // window being accumulated. The window's detection comes with its last
   // sweep, whose images may not show the board; the board is static over the
-  // window, so any of its frames with the board serves the check.
+  // window, so any of its frames with the board serves the check; one whose
+  // rim refinement converged, when one did (SceneScorer measures the board
+  // on refined poses).
   std::shared_ptr<const CameraObservation> window_camera;
 
   // Names the frame, accumulates what its branches found, keeps its report,
@@ -72,8 +74,10 @@ struct Calibrator::Impl {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
     std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
     if (check && ring_free) {
-      if (report.camera.found && !window_camera) window_camera = observe_camera();
-      if (report.lidar.found && !report.camera.found) camera = window_camera;
+      const bool better = !window_camera || (!window_camera->board_pose_refined && report.camera.rim_rms_px > 0.0);
+      if (report.camera.found && better) window_camera = observe_camera();
+      const bool own_is_coarse = !report.camera.found || report.camera.rim_rms_px == 0.0;
+      if (report.lidar.found && own_is_coarse && window_camera) camera = window_camera;
       if (report.lidar.failed_stage != "accumulating") window_camera.reset();  // the window is closed
     }
     if (check && report.lidar.found && (report.camera.found || camera)) {

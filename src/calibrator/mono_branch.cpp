@@ -17,6 +17,7 @@ BranchReport run_mono_branch(const Image& left, const MonoBoardDetector& detecto
   // The check's view of the frame, should one be run: the board pose.
   CameraObservation observation;
   observation.T_camera_board = detected.T_camera_board;
+  observation.board_pose_refined = detected.rim_rms_px > 0.0;
   report.observation = std::make_shared<const CameraObservation>(std::move(observation));
   return report;
 }

@@ -33,7 +33,8 @@ CameraObservation observe_camera(const Image& left, const CameraInspection& insp
   const Image& rectified_left = inspection.rectified ? inspection.rectified->left : left;
   if (inspection.rectified) T_camera_rect.linear() = inspection.rectified->R_rect_camera.transpose();
   if (found) {
-    if (inspection.refined && inspection.refined->converged)
+    out.board_pose_refined = inspection.refined && inspection.refined->converged;
+    if (out.board_pose_refined)
       out.T_camera_board = T_camera_rect * inspection.refined->T_camera_board;
     else if (inspection.T_camera_board_initial)
       out.T_camera_board = T_camera_rect * *inspection.T_camera_board_initial;
