@@ -103,12 +103,12 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
     const std::vector<int>& bad = pose.stream_outliers[s];
     return std::find(bad.begin(), bad.end(), f) != bad.end();
   };
-  const std::vector<bool> coarse = sparse[1] ? std::vector<bool>() : left_out_coarse(pose, streams, coarse_source);
+  const std::vector<bool> coarse = left_out_coarse(pose, streams, coarse_source);
   int left_out = 0;
   for (int f : pose.frames)
     for (std::size_t s = 0; s < 2; ++s) {
       if (sparse[s] || !streams[f][s] || wrong(s, f)) continue;
-      if (s == 1 && f < static_cast<int>(coarse.size()) && coarse[f]) {
+      if (s == 1 && coarse[f]) {
         ++left_out;
         continue;
       }
