@@ -16,6 +16,8 @@
 //    fail, for rims that differ from the face in hue more than in brightness.
 // Using the right image too gives each rim a disparity, i.e. the depth and
 // tilt that a single view hardly observes.
+// This file holds the fit and the driver; the rim model is in rim_model.hpp,
+// the edge search in rim_edge_search.hpp.
 
 #include <l2s/board_pose_refiner.hpp>
 
@@ -23,105 +25,27 @@
 
 #include "camera/cv_image.hpp"
 #include "camera/noise_level.hpp"
+#include "camera/rim_edge_search.hpp"
+#include "camera/rim_model.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace l2s {
 namespace {
 
-/// Directional gradients of a crop of an 8-bit image, in gray levels per
-/// pixel: one pair per channel (one for gray, three for colour).
-struct Gradient {
-  std::vector<cv::Mat> gx, gy;  // CV_32F, per channel
-  int x0 = 0, y0 = 0;
-
-  /// The strongest channel's |gradient . normal| at full-image coordinates
-  /// (Catmull-Rom bicubic); false outside the crop. Bilinear interpolation
-  /// would make the profile along a search line piecewise linear with kinks
-  /// at the pixel grid, and the parabolic peak fit would lock towards them:
-  /// a bias of ~0.02 px that differs between the views, i.e. ~1 mm of depth
-  /// per hole at 3.5 m.
-  bool along(double x, double y, const Eigen::Vector2d& normal, double& value) const {
-    if (gx.empty()) return false;
-    const double fx = x - x0, fy = y - y0;
-    const int ix = static_cast<int>(std::floor(fx)), iy = static_cast<int>(std::floor(fy));
-    if (ix < 1 || iy < 1 || ix + 2 >= gx[0].cols || iy + 2 >= gx[0].rows) return false;
-    const auto weights = [](double t, double w[4]) {
-      const double t2 = t * t, t3 = t2 * t;
-      w[0] = 0.5 * (-t3 + 2 * t2 - t);
-      w[1] = 0.5 * (3 * t3 - 5 * t2 + 2);
-      w[2] = 0.5 * (-3 * t3 + 4 * t2 + t);
-      w[3] = 0.5 * (t3 - t2);
-    };
-    double wx[4], wy[4];
-    weights(fx - ix, wx);
-    weights(fy - iy, wy);
-    const auto interp = [&](const cv::Mat& m) {
-      double sum = 0.0;
-      for (int j = 0; j < 4; ++j) {
-        const float* r = m.ptr<float>(iy - 1 + j) + ix - 1;
-        sum += wy[j] * (wx[0] * r[0] + wx[1] * r[1] + wx[2] * r[2] + wx[3] * r[3]);
-      }
-      return sum;
-    };
-    value = 0.0;
-    for (std::size_t c = 0; c < gx.size(); ++c)
-      value = std::max(value, std::abs(interp(gx[c]) * normal.x() + interp(gy[c]) * normal.y()));
-    return true;
-  }
-};
-
-Gradient gradient_of(const cv::Mat& image, const cv::Rect& box) {
-  Gradient grad;
-  const cv::Rect crop = box & cv::Rect(0, 0, image.cols, image.rows);
-  grad.x0 = crop.x;
-  grad.y0 = crop.y;
-  if (crop.area() <= 0) return grad;
-  std::vector<cv::Mat> channels;
-  cv::split(image(crop), channels);
-  for (const cv::Mat& channel : channels) {
-    // 3x3 Sobel / 8 is the central difference smoothed across: gray levels / px.
-    grad.gx.emplace_back();
-    grad.gy.emplace_back();
-    cv::Sobel(channel, grad.gx.back(), CV_32F, 1, 0, 3, 1.0 / 8.0);
-    cv::Sobel(channel, grad.gy.back(), CV_32F, 0, 1, 3, 1.0 / 8.0);
-  }
-  return grad;
-}
-
-/// One rectified camera: projection matrix P (left optical frame in) and centre.
-struct View {
-  Eigen::Matrix<double, 3, 4> P;
-  Eigen::Vector3d center;  // [m] in the left optical frame
-  int width = 0, height = 0;
-  Gradient grad;
-
-  bool project(const Eigen::Vector3d& p, Eigen::Vector2d& u, Eigen::Matrix<double, 2, 3>* J) const {
-    const Eigen::Vector3d h = P * p.homogeneous();
-    if (!(h.z() > 1e-6)) return false;
-    u = h.head<2>() / h.z();
-    if (J) *J = (P.topLeftCorner<2, 3>() - u * P.block<1, 3>(2, 0)) / h.z();
-    return true;
-  }
-};
-
-/// A rim point matched to an image edge in one view.
-struct Sample {
-  int view;
-  Eigen::Vector3d X_board;   // [m] on a rim circle (or a known point: an anchor)
-  Eigen::Vector2d normal;    // unit, image normal of the projected rim (an anchor: one image axis)
-  Eigen::Vector2d observed;  // [px] edge position found on the search line
-  double weight = 1.0;       // an anchor's weight relative to one rim sample
-  bool rim = true;           // false: an anchor (not in the edge rms)
-};
+using detail::EdgeSearch;
+using detail::Rims;
+using detail::Sample;
+using detail::View;
+using detail::rims_of;
+using detail::views_of;
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
@@ -130,282 +54,6 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 }
 
 using Params = BoardPoseRefiner::Params;
-
-/// The hole rims in the board frame: each hole's front (z = 0) and back
-/// (z = -thickness) circle, sampled evenly, with the tangent at each sample.
-struct Rims {
-  std::vector<Eigen::Vector3d> points;    // [m] board frame, [hole][rim][theta]
-  std::vector<Eigen::Vector3d> tangents;  // unit, board frame
-  std::vector<int> hole;                  // the hole of each point
-  std::array<Eigen::Vector2d, 4> centers;  // [m] hole centres, board frame
-  double radius = 0.0;     // [m]
-  double thickness = 0.0;  // [m]
-};
-
-Rims rims_of(const Target& target, int samples_per_rim) {
-  Rims rims;
-  rims.radius = target.hole_radius;
-  rims.thickness = target.board_thickness;
-  rims.centers = target.hole_centers();
-  const int n = samples_per_rim;
-  for (int h = 0; h < 4; ++h)
-    for (const double z : {0.0, -rims.thickness})
-      for (int k = 0; k < n; ++k) {
-        const double a = 2.0 * M_PI * (k + 0.5) / n;
-        rims.points.emplace_back(rims.centers[h].x() + rims.radius * std::cos(a),
-                                 rims.centers[h].y() + rims.radius * std::sin(a), z);
-        rims.tangents.emplace_back(-std::sin(a), std::cos(a), 0.0);
-        rims.hole.push_back(h);
-      }
-  return rims;
-}
-
-/// The box around the rims' projection at pose T, padded by `pad` [px];
-/// empty when no rim point projects (the board is behind the camera).
-std::optional<cv::Rect> board_box(const View& view, const Rims& rims, const Eigen::Isometry3d& T, double pad) {
-  double x_min = 1e18, y_min = 1e18, x_max = -1e18, y_max = -1e18;
-  for (const auto& X : rims.points) {
-    Eigen::Vector2d u;
-    if (!view.project(T * X, u, nullptr)) continue;
-    x_min = std::min(x_min, u.x()); x_max = std::max(x_max, u.x());
-    y_min = std::min(y_min, u.y()); y_max = std::max(y_max, u.y());
-  }
-  if (x_min > x_max) return std::nullopt;
-  return cv::Rect(cv::Point(static_cast<int>(x_min - pad), static_cast<int>(y_min - pad)),
-                  cv::Point(static_cast<int>(x_max + pad), static_cast<int>(y_max + pad)));
-}
-
-/// The left view (and the right one, with use_right_image), each with the
-/// gradient of the board's neighbourhood only: the whole image's would cost
-/// more than the fit. Empty when the board is behind a camera.
-std::vector<View> views_of(const StereoCamera& camera, const Image& left, const Image& right,
-                           const cv::Mat& pixels_left, const cv::Mat& pixels_right, const Rims& rims,
-                           const Eigen::Isometry3d& T_camera_board, const Params& params) {
-  std::vector<View> views;
-  const double baseline = camera.baseline();
-  views.push_back({camera.left.projection_matrix, Eigen::Vector3d::Zero(), left.width, left.height, {}});
-  if (params.use_right_image)
-    views.push_back({camera.right.projection_matrix, Eigen::Vector3d(baseline, 0, 0), right.width,
-                     right.height, {}});
-  for (std::size_t v = 0; v < views.size(); ++v) {
-    const double pad = 4.0 * params.search_range_px + 20.0;  // room for the pose to move
-    const std::optional<cv::Rect> box = board_box(views[v], rims, T_camera_board, pad);
-    if (!box) return {};
-    views[v].grad = gradient_of(v == 0 ? pixels_left : pixels_right, *box);
-  }
-  return views;
-}
-
-/// True when the line of sight from `eye` through rim point X (board frame)
-/// passes outside the hole's other rim circle: the hole's wall hides X.
-bool hidden_by_wall(const Rims& rims, const Eigen::Vector3d& eye, const Eigen::Vector3d& X, int hole) {
-  const double other_z = X.z() == 0.0 ? -rims.thickness : 0.0;
-  const double s = (other_z - eye.z()) / (X.z() - eye.z());
-  const Eigen::Vector3d Q = eye + s * (X - eye);
-  return (Q.head<2>() - rims.centers[hole]).norm() > rims.radius;
-}
-
-/// Where a rim point projects in a view and the image normal of its rim there.
-struct RimPixel {
-  Eigen::Vector2d u;       // [px]
-  Eigen::Vector2d normal;  // unit
-};
-
-/// The first edge from the board's side counts as the rim only when it is at
-/// least this share of the strongest edge in the search window: weaker bumps
-/// nearer the face are its texture or noise. On three random scenes before
-/// tiles and bricks (1653306487, 1060328696, 2031326890; 3 frames each) 0.3
-/// refined 9 of 9 frames to 0.3-4.5 mm; 0 refined 7 (two kept circles 6-7
-/// mm off), 0.5 refined 6.
-constexpr double kFirstEdgeShare = 0.3;
-
-/// The search half of a round: which (view, rim point) samples are used, and
-/// where each finds its edge along the rim's normal.
-///
-/// Visibility and the separation test are decided afresh while the search
-/// range shrinks, then frozen (`locked`): samples toggling at those
-/// thresholds would otherwise keep the pose jittering by a few 1e-5 and never
-/// let the rounds settle. Once frozen, a sample that loses its edge (too
-/// weak, window clipped) is dropped for good, so the set only shrinks and
-/// cannot toggle either.
-class EdgeSearch {
- public:
-  EdgeSearch(const Params& params, const Rims& rims, const std::vector<View>& views)
-      : params_(params), rims_(rims), views_(views), chosen_(views.size() * rims.points.size(), 0) {}
-
-  /// Fills `samples` with the edges found at pose T within +-range [px];
-  /// returns how many samples were searched (search line inside the image),
-  /// edge or not.
-  int search(const Eigen::Isometry3d& T, double range, bool locked, std::vector<Sample>& samples) {
-    steps_ = static_cast<int>(std::floor(range / params_.search_step_px));
-    profile_.assign(2 * steps_ + 1, 0.0);
-    margin_ = params_.image_margin_px + range;
-    samples.clear();
-    int searched = 0;
-    const Eigen::Isometry3d T_board_camera = T.inverse();
-    for (std::size_t v = 0; v < views_.size(); ++v) {
-      const View& view = views_[v];
-      const Eigen::Vector3d eye = T_board_camera * view.center;  // camera centre, board frame
-      if (!(eye.z() > 0.0)) continue;  // looking at the back face
-      for (std::size_t k = 0; k < rims_.points.size(); ++k) {
-        const Eigen::Vector3d& X = rims_.points[k];
-        char& use = chosen_[v * rims_.points.size() + k];
-        if (locked && !use) continue;
-        use = 0;
-        if (!locked && hidden_by_wall(rims_, eye, X, rims_.hole[k])) continue;
-        RimPixel at;
-        double along = 0.0;  // [px] edge position on the search line
-        const Outcome outcome = find_edge(view, T, k, locked, at, along);
-        if (outcome != Outcome::NotSearched) ++searched;
-        if (outcome != Outcome::Edge) continue;
-        use = 1;
-        samples.push_back({static_cast<int>(v), X, at.normal, at.u + along * at.normal});
-      }
-    }
-    return searched;
-  }
-
- private:
-  enum class Outcome { NotSearched, NoEdge, Edge };
-
-  /// The edge of rim point k in `view` at pose T: its projection, the
-  /// search window along the normal, the gradient profile and its peak.
-  Outcome find_edge(const View& view, const Eigen::Isometry3d& T, std::size_t k, bool locked, RimPixel& at,
-                    double& along) {
-    const Eigen::Vector3d& X = rims_.points[k];
-    if (!project_rim(view, T, k, at)) return Outcome::NotSearched;
-    int lo = 0, hi = 2 * steps_;  // profile indices (offset -steps..steps)
-    if (X.z() != 0.0 && !clip_back_rim_window(view, T, X, at, locked, lo, hi)) return Outcome::NotSearched;
-    if (!sample_profile(view, at, lo, hi)) return Outcome::NotSearched;
-    const int board_side = params_.first_edge_from_board ? board_side_of(view, T, k, at) : 0;
-    return peak(lo, hi, board_side, along) ? Outcome::Edge : Outcome::NoEdge;
-  }
-
-  /// +1 when the board's material (the face beside a front rim, the hole's
-  /// wall beside a back rim) lies along +normal from rim point k's
-  /// projection, -1 when along -normal, 0 when it cannot be told.
-  int board_side_of(const View& view, const Eigen::Isometry3d& T, std::size_t k, const RimPixel& at) const {
-    const Eigen::Vector3d& X = rims_.points[k];
-    const Eigen::Vector2d radial = (X.head<2>() - rims_.centers[rims_.hole[k]]).normalized();
-    // The face lies outside the front rim; the wall of a back rim towards the front rim.
-    const Eigen::Vector3d toward =
-        X.z() == 0.0 ? Eigen::Vector3d(X.x() + 1e-3 * radial.x(), X.y() + 1e-3 * radial.y(), 0.0)
-                     : Eigen::Vector3d(X.x(), X.y(), 0.0);
-    Eigen::Vector2d u;
-    if (!view.project(T * toward, u, nullptr)) return 0;
-    const double side = at.normal.dot(u - at.u);
-    return side > 0.0 ? 1 : side < 0.0 ? -1 : 0;
-  }
-
-  /// Projection and rim normal of rim point k; false when it falls outside
-  /// the image (less the margin and the search range) or the rim is seen
-  /// edge-on.
-  bool project_rim(const View& view, const Eigen::Isometry3d& T, std::size_t k, RimPixel& at) const {
-    Eigen::Matrix<double, 2, 3> J;
-    const Eigen::Vector3d p = T * rims_.points[k];
-    if (!view.project(p, at.u, &J)) return false;
-    const double m = margin_;
-    const Eigen::Vector2d& u = at.u;
-    if (u.x() < m || u.y() < m || u.x() > view.width - 1 - m || u.y() > view.height - 1 - m) return false;
-    const Eigen::Vector2d tangent = J * (T.linear() * rims_.tangents[k]);
-    if (tangent.norm() < 1e-9) return false;
-    at.normal = Eigen::Vector2d(-tangent.y() / tangent.norm(), tangent.x() / tangent.norm());
-    return true;
-  }
-
-  /// A back-rim silhouette has the hole wall beside it, bounded by the front
-  /// rim's edge (face | wall | back rim | background). When that band is
-  /// narrow both edges merge into one gradient peak whose position is
-  /// biased, differently in each view: such samples are dropped (until the
-  /// selection is locked). The face-to-wall edge is often the stronger one (a
-  /// wall in shadow is as dark as what is seen through the hole), so the
-  /// search must not reach it: the window [lo, hi] stops half a pixel short
-  /// of half-way to the front rim on that side, whatever the step (the Sobel
-  /// response of that edge is ~1.5 px wide; a window ending on its flank
-  /// finds a biased peak).
-  bool clip_back_rim_window(const View& view, const Eigen::Isometry3d& T, const Eigen::Vector3d& X,
-                            const RimPixel& at, bool locked, int& lo, int& hi) const {
-    Eigen::Vector2d u_front;
-    if (!view.project(T * Eigen::Vector3d(X.x(), X.y(), 0.0), u_front, nullptr)) return false;
-    const double separation = at.normal.dot(u_front - at.u);  // [px] signed, along the normal
-    if (!locked && std::abs(separation) < params_.min_rim_separation_px) return false;
-    const int reach = std::max(
-        1, static_cast<int>(std::floor((0.5 * std::abs(separation) - 0.5) / params_.search_step_px)));
-    if (separation > 0.0)
-      hi = std::min(hi, steps_ + reach);
-    else
-      lo = std::max(lo, steps_ - reach);
-    return true;
-  }
-
-  /// |directional gradient| along the normal at profile indices lo..hi;
-  /// false when the window leaves the gradient's crop.
-  bool sample_profile(const View& view, const RimPixel& at, int lo, int hi) {
-    const Eigen::Vector2d& u = at.u;
-    const Eigen::Vector2d& normal = at.normal;
-    bool inside = true;
-    for (int i = lo; i <= hi && inside; ++i) {
-      inside = view.grad.along(u.x() + (i - steps_) * params_.search_step_px * normal.x(),
-                               u.y() + (i - steps_) * params_.search_step_px * normal.y(), normal, profile_[i]);
-    }
-    return inside;
-  }
-
-  /// The rim's peak in the profile, refined by a parabola, as a distance
-  /// along the normal [px]; false when it is too weak or the profile still
-  /// rises at a clipped end (the peak is the front rim's, beyond).
-  ///
-  /// With `board_side` (+1 / -1: the board's material lies towards higher /
-  /// lower indices) it is the first peak met coming from the board's side,
-  /// not the strongest: the board's face beside a rim is smooth, what is
-  /// seen through the hole need not be. Bricks or tiles behind a hole put
-  /// edges a pixel or two inside the rim that are stronger than a
-  /// low-contrast rim, and the strongest peak then follows them: on a gray
-  /// board before bricks (random scene 1037259372) a refinement started at
-  /// the true pose did not converge and ended 31 mm and 4.7 deg off (1.8 mm,
-  /// 0.23 deg and converged with this rule). A peak is a sample that is the
-  /// largest within +-1 px and reaches min_edge_strength and kFirstEdgeShare
-  /// of the strongest.
-  bool peak(int lo, int hi, int board_side, double& along) const {
-    const std::vector<double>& profile = profile_;
-    int best = lo + 1;
-    for (int i = lo + 1; i < hi; ++i)
-      if (profile[i] > profile[best]) best = i;
-    if (profile[best] < params_.min_edge_strength) return false;
-    if ((lo > 0 && profile[lo] > profile[best]) || (hi < 2 * steps_ && profile[hi] > profile[best])) return false;
-    if (board_side != 0)
-      best = first_peak_from(board_side > 0 ? hi - 1 : lo + 1, -board_side, lo, hi,
-                             std::max(params_.min_edge_strength, kFirstEdgeShare * profile[best]));
-    const double a = profile[best - 1], b = profile[best], c = profile[best + 1];
-    const double denom = a - 2.0 * b + c;
-    const double offset = denom < 0.0 ? 0.5 * (a - c) / denom : 0.0;
-    along = (best - steps_ + offset) * params_.search_step_px;
-    return true;
-  }
-
-  /// The first inner index from `start`, walking by `step` (+-1), that
-  /// reaches `threshold` and is the largest within +-1 px; the strongest
-  /// sample does, so one is always found.
-  int first_peak_from(int start, int step, int lo, int hi, double threshold) const {
-    const int reach = std::max(1, static_cast<int>(std::lround(1.0 / params_.search_step_px)));
-    for (int i = start; i > lo && i < hi; i += step) {
-      if (profile_[i] < threshold) continue;
-      bool largest = true;
-      for (int j = std::max(lo, i - reach); j <= std::min(hi, i + reach) && largest; ++j)
-        largest = profile_[j] <= profile_[i];
-      if (largest) return i;
-    }
-    return start;
-  }
-
-  const Params& params_;
-  const Rims& rims_;
-  const std::vector<View>& views_;
-  std::vector<char> chosen_;     // [view][rim point]: used in the last round
-  std::vector<double> profile_;  // gradient along the current search line
-  int steps_ = 0;                // search steps on each side of the rim
-  double margin_ = 0.0;          // [px] from the image border, search range included
-};
 
 /// One left se(3) increment of T: rotation w [rad] about the camera origin, then translation v [m].
 Eigen::Isometry3d apply_increment(const Eigen::Isometry3d& T, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
