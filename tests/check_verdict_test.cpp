@@ -172,5 +172,39 @@ TEST(CheckVerdict, MisalignmentCountsOnlyBeyondThePeaksWidth) {
   EXPECT_EQ(judged(0.037), Verdict::Suspect);    // 2.1 deg: beyond it
 }
 
+// A roll of the best alignment about the optical axis counts only where
+// many edges land there: a good random-scene result (2.5 mm, 0.04 deg) had
+// a sharp roll peak 1.2 deg away where 17 % of its edges scored.
+TEST(CheckVerdict, RollCountsOnlyAtARealOptimum) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double optimum) {
+    CalibrationCheck::Report report = agreeing();
+    report.peaks[2].offset = 1.17 * M_PI / 180;
+    report.peaks[2].width = 1.04 * M_PI / 180;
+    report.peaks[2].prominence = 0.52;
+    report.optimum_edge_score = optimum;
+    detail::judge(report, params, 1000.0);
+    return report.verdict;
+  };
+  EXPECT_EQ(judged(0.17), Verdict::Ok);
+  EXPECT_EQ(judged(0.6), Verdict::Suspect);
+}
+
+// The edges off the board on their own: few, and they settle on texture and
+// shadows, so right results (within 0.4 deg) reached 0.3-1.4 deg; a board
+// that moved between the lidar sweep and the images leaves them degrees off.
+TEST(CheckVerdict, SceneMisalignmentCountsBeyondWhatFewEdgesWander) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double degrees) {
+    CalibrationCheck::Report report = agreeing();
+    report.scene_misalignment = degrees * M_PI / 180;
+    detail::judge(report, params, 1000.0);
+    return report.verdict;
+  };
+  EXPECT_EQ(judged(0.8), Verdict::Ok);
+  EXPECT_EQ(judged(1.5), Verdict::Suspect);
+  EXPECT_EQ(judged(3.5), Verdict::Failed);
+}
+
 }  // namespace
 }  // namespace l2s

@@ -57,6 +57,14 @@ class L2S_EXPORT CalibrationCheck {
     double failed_misalignment_deg = 1.5;   ///< [deg] >= suspect_misalignment_deg
     double suspect_roll_deg = 0.6;          ///< [deg] roll about the optical axis to the best alignment (moves pixels near the centre little), > 0
     double failed_roll_deg = 2.0;           ///< [deg] >= suspect_roll_deg
+    /// [deg] How much nearer to image edges an image shift of their own
+    /// brings the lidar edges off the board (Report::scene_misalignment),
+    /// beyond which the board seems to have moved between the lidar sweep
+    /// and the images. Looser than the misalignment: those edges are few and
+    /// settle on texture and shadows (right random-scene results, within
+    /// 0.4 deg, reached 0.3-1.4 deg), > 0.
+    double suspect_scene_misalignment_deg = 1.0;
+    double failed_scene_misalignment_deg = 3.0;  ///< [deg] >= suspect_scene_misalignment_deg
     double suspect_outline_deg = 0.25;      ///< [deg] median distance of the lidar board edges from the board's contour (px / fx), > 0
     double failed_outline_deg = 1.0;        ///< [deg] >= suspect_outline_deg
     double suspect_plane_offset = 0.015;    ///< [m] lidar board returns from the camera's board plane (its rims' pose), > 0
@@ -111,7 +119,9 @@ class L2S_EXPORT CalibrationCheck {
     double failed_depth_agreement = 0.3;  ///< <= suspect_depth_agreement
     /// The roll rule counts only when the roll scan peaks this clearly
     /// (prominence): a roll moves the edges near the image centre little, so
-    /// a true one raises the score by little, but its optimum is sharp, 0..1.
+    /// a true one raises the score by little, but its optimum is sharp; and,
+    /// like the misalignment rule, only at an edge score of
+    /// min_optimum_edge_score there, 0..1.
     double min_roll_prominence = 0.5;
     double suspect_depth_tilt_deg = 2.0;    ///< [deg] lidar against stereo depth off the board (coarse stereo alone tilts up to ~1.1 deg with the default preset, 1.64 deg with the paper preset on the nine settings), > 0
     /// [deg] >= suspect_depth_tilt_deg. High: coarse stereo on a plain or

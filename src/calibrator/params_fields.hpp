@@ -225,6 +225,8 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("failed_misalignment_deg", p.failed_misalignment_deg);
   v.field("suspect_roll_deg", p.suspect_roll_deg);
   v.field("failed_roll_deg", p.failed_roll_deg);
+  v.field("suspect_scene_misalignment_deg", p.suspect_scene_misalignment_deg);
+  v.field("failed_scene_misalignment_deg", p.failed_scene_misalignment_deg);
   v.field("suspect_outline_deg", p.suspect_outline_deg);
   v.field("failed_outline_deg", p.failed_outline_deg);
   v.field("suspect_plane_offset", p.suspect_plane_offset);

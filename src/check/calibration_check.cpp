@@ -90,6 +90,8 @@ void CalibrationCheck::Params::validate() const {
   ordered(suspect_misalignment_deg, failed_misalignment_deg, "failed_misalignment_deg");
   positive(suspect_roll_deg, "suspect_roll_deg");
   ordered(suspect_roll_deg, failed_roll_deg, "failed_roll_deg");
+  positive(suspect_scene_misalignment_deg, "suspect_scene_misalignment_deg");
+  ordered(suspect_scene_misalignment_deg, failed_scene_misalignment_deg, "failed_scene_misalignment_deg");
   positive(suspect_outline_deg, "suspect_outline_deg");
   ordered(suspect_outline_deg, failed_outline_deg, "failed_outline_deg");
   positive(suspect_plane_offset, "suspect_plane_offset");
