@@ -89,6 +89,23 @@ TEST(CalibrationCheck, TheBoardIsMeasuredOnRefinedPosesWhenThereAreAny) {
   EXPECT_EQ(report.verdict, Verdict::Ok) << reasons(report);
 }
 
+// A camera board pose that turns between frames of the static board (here
+// by up to 2 deg about the board's horizontal axis, differently in each
+// frame) is a detection the scene makes unstable; the fit makes the boards
+// agree on average, so only the scatter shows it.
+TEST(CalibrationCheck, ACameraBoardPoseTurningBetweenFramesIsSuspect) {
+  const auto steady = make_check().check(frames(), simulator().T_lidar_camera());
+  EXPECT_LT(steady.scores.pose_scatter * 180 / M_PI, 0.2);
+  std::vector<CheckFrame> turning = frames();
+  for (std::size_t k = 0; k < turning.size(); ++k) {
+    Eigen::Isometry3d& T = *turning[k].camera.T_camera_board;
+    T = T * Eigen::AngleAxisd(2.0 * std::sin(2.4 * static_cast<double>(k)) * M_PI / 180, Eigen::Vector3d::UnitX());
+  }
+  const auto report = make_check().check(turning, simulator().T_lidar_camera());
+  EXPECT_GT(report.scores.pose_scatter * 180 / M_PI, 1.0);
+  EXPECT_NE(report.verdict, Verdict::Ok) << reasons(report);
+}
+
 // 1 deg about each camera axis, with 2 cm along another: every one is off.
 TEST(CalibrationCheck, PerturbedTransformIsReportedOff) {
   const Eigen::Isometry3d truth = simulator().T_lidar_camera();

@@ -206,5 +206,27 @@ TEST(CheckVerdict, SceneMisalignmentCountsBeyondWhatFewEdgesWander) {
   EXPECT_EQ(judged(3.5), Verdict::Failed);
 }
 
+// The fit makes the lidar board agree with the camera's, so a camera board
+// pose that is off leaves no trace in the board evidence; how much it turns
+// between frames of the static board does. A wrong random-scene result
+// (257 mm, 2.7 deg) agreed in everything else and scattered by 2.1 deg;
+// right ones by at most 0.32 deg.
+TEST(CheckVerdict, AnUnstableCameraBoardPoseIsSuspect) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double degrees) {
+    CalibrationCheck::Report report = agreeing();
+    report.scores.pose_scatter = degrees * M_PI / 180;
+    detail::judge(report, params, 1000.0);
+    return report;
+  };
+  EXPECT_EQ(judged(0.3).verdict, Verdict::Ok);
+  const auto unstable = judged(2.1);
+  EXPECT_EQ(unstable.verdict, Verdict::Suspect);
+  ASSERT_EQ(unstable.reasons.size(), 1u);
+  EXPECT_NE(unstable.reasons[0].find("frame to frame"), std::string::npos) << unstable.reasons[0];
+  EXPECT_EQ(judged(5.0).verdict, Verdict::Failed);
+  EXPECT_EQ(judged(std::nan("")).verdict, Verdict::Ok);  // fewer than 3 frames: not measured
+}
+
 }  // namespace
 }  // namespace l2s

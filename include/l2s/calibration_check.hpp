@@ -89,6 +89,12 @@ class L2S_EXPORT CalibrationCheck {
     double row_texture_share = 0.3;  ///< 0..1; on random scenes wood-grain faces measured 0.2-0.9, plain and low-contrast ones at most 0.2
     double suspect_plane_tilt_deg = 1.0;    ///< [deg] lidar board against the camera's, > 0
     double failed_plane_tilt_deg = 4.0;     ///< [deg] >= suspect_plane_tilt_deg
+    /// [deg] Scatter of the camera's board pose from frame to frame
+    /// (Scores::pose_scatter). Right random-scene results scattered up to
+    /// 0.32 deg; a wrong one (257 mm, 2.7 deg), whose every other board
+    /// measure agreed, 2.1 deg, > 0.
+    double suspect_pose_scatter_deg = 0.75;
+    double failed_pose_scatter_deg = 4.0;  ///< [deg] >= suspect_pose_scatter_deg
     double suspect_center_offset = 0.012;   ///< [m] lidar hole centres from the camera's holes, in the board plane (a calibration's own centres agree to a few mm), > 0
     double failed_center_offset = 0.05;     ///< [m] >= suspect_center_offset
     double suspect_outside_fraction = 0.08; ///< share of lidar board returns outside the board's outline, (0, 1)
@@ -157,6 +163,13 @@ class L2S_EXPORT CalibrationCheck {
     double stereo_row_texture = kNaN;  ///< share of the board's stereo points whose texture runs along the rows (SceneObserver::row_texture_share), median over frames
     double plane_spread = kNaN;     ///< [m] robust sigma of those distances
     double plane_tilt = kNaN;       ///< [rad] lidar board plane (in the camera frame) against the camera's board pose: the rotation between them, median over frames (per component, so noise averages out)
+    /// [rad] How much that rotation scatters from frame to frame (robust
+    /// sigma per component, their length; NaN with fewer than 3 frames). The
+    /// lidar's board plane rests on hundreds of returns, so this is the
+    /// camera's board pose turning between frames of a static board: a
+    /// detection the scene makes unstable, whose error the result may carry
+    /// whole (the plane tilt cannot show it: the fit made the boards agree).
+    double pose_scatter = kNaN;
     double outline_px = kNaN;       ///< [px] median distance, in the image, of lidar board edges from the outline and hole rims
     double outside_fraction = kNaN; ///< share of lidar board returns outside the board (or inside a hole)
     /// [m] In the board plane, the median offset of the lidar hole centres

@@ -238,6 +238,8 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("row_texture_share", p.row_texture_share);
   v.field("suspect_plane_tilt_deg", p.suspect_plane_tilt_deg);
   v.field("failed_plane_tilt_deg", p.failed_plane_tilt_deg);
+  v.field("suspect_pose_scatter_deg", p.suspect_pose_scatter_deg);
+  v.field("failed_pose_scatter_deg", p.failed_pose_scatter_deg);
   v.field("suspect_center_offset", p.suspect_center_offset);
   v.field("failed_center_offset", p.failed_center_offset);
   v.field("suspect_outside_fraction", p.suspect_outside_fraction);

@@ -42,6 +42,7 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   number("stereo_offset_px", s.stereo_offset_px);
   number("stereo_row_texture", s.stereo_row_texture);
   number("plane_tilt_deg", s.plane_tilt * 180.0 / M_PI);
+  number("pose_scatter_deg", s.pose_scatter * 180.0 / M_PI);
   number("outline_px", s.outline_px);
   number("outside_fraction", s.outside_fraction);
   number("center_offset_m", s.center_offset);

@@ -104,6 +104,8 @@ void CalibrationCheck::Params::validate() const {
   if (!(row_texture_share >= 0.0 && row_texture_share <= 1.0)) throw ParamError("row_texture_share", "must be in 0..1");
   positive(suspect_plane_tilt_deg, "suspect_plane_tilt_deg");
   ordered(suspect_plane_tilt_deg, failed_plane_tilt_deg, "failed_plane_tilt_deg");
+  positive(suspect_pose_scatter_deg, "suspect_pose_scatter_deg");
+  ordered(suspect_pose_scatter_deg, failed_pose_scatter_deg, "failed_pose_scatter_deg");
   if (!(suspect_outside_fraction > 0.0 && suspect_outside_fraction < 1.0))
     throw ParamError("suspect_outside_fraction", "must be in (0, 1)");
   ordered(suspect_outside_fraction, failed_outside_fraction, "failed_outside_fraction");

@@ -27,8 +27,8 @@ void describe_scores(std::ostringstream& out, const CalibrationCheck::Scores& s,
                 s.depth_agreement, s.depth_points, 100.0 * s.depth_bias, s.depth_tilt / kDeg);
   if (std::isfinite(s.plane_offset))
     out << indent
-        << line("board      plane offset %+.1f mm (spread %.1f mm), tilt %.2f deg\n", s.plane_offset * 1e3,
-                s.plane_spread * 1e3, s.plane_tilt / kDeg);
+        << line("board      plane offset %+.1f mm (spread %.1f mm), tilt %.2f deg (scatter over frames %.2f deg)\n",
+                s.plane_offset * 1e3, s.plane_spread * 1e3, s.plane_tilt / kDeg, s.pose_scatter / kDeg);
   if (std::isfinite(s.stereo_offset))
     out << indent
         << line("stereo     board plane %+.1f mm (%+.2f px) from the rims' pose; %.0f %% of its points textured "

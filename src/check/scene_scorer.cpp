@@ -128,6 +128,15 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   scores.plane_spread = median(spreads);
   const Eigen::Vector3d tilt(median(tilts[0]), median(tilts[1]), median(tilts[2]));
   scores.plane_tilt = std::asin(std::min(1.0, tilt.norm()));
+  if (board_frames_.size() >= 3) {
+    Eigen::Vector3d scatter;
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> deviations;
+      for (const double t : tilts[k]) deviations.push_back(std::abs(t - tilt[k]));
+      scatter[k] = 1.4826 * median(deviations);
+    }
+    scores.pose_scatter = std::asin(std::min(1.0, scatter.norm()));
+  }
   scores.outline_px = median(outline_px);
   scores.outside_fraction = returns ? static_cast<double>(outside) / returns : CalibrationCheck::Scores::kNaN;
   if (!center_x.empty()) scores.center_offset = std::hypot(median(center_x), median(center_y));

@@ -46,6 +46,10 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
                  s.stereo_offset * 1e3, s.stereo_offset_px));
   j.grade(s.plane_tilt, p.suspect_plane_tilt_deg * kDeg, p.failed_plane_tilt_deg * kDeg,
           format("the lidar board is tilted %.2f deg against the camera's", s.plane_tilt / kDeg));
+  j.grade(s.pose_scatter, p.suspect_pose_scatter_deg * kDeg, p.failed_pose_scatter_deg * kDeg,
+          format("the camera's board pose turns by %.2f deg from frame to frame (its detection is unstable in this "
+                 "scene; the result may carry its error, which the board agreeing with the lidar cannot show)",
+                 s.pose_scatter / kDeg));
   j.grade(s.outline_px / fx, p.suspect_outline_deg * kDeg, p.failed_outline_deg * kDeg,
           format("lidar board edges lie %.1f px (%.2f deg) from the board's outline and hole rims", s.outline_px,
                  s.outline_px / fx / kDeg));
