@@ -74,10 +74,10 @@ struct Calibrator::Impl {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
     std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
     if (check && ring_free) {
-      const bool better = !window_camera || (!window_camera->board_pose_refined && report.camera.rim_rms_px > 0.0);
+      const bool refined = report.camera.found && report.camera.rim_rms_px > 0.0;
+      const bool better = !window_camera || (!window_camera->board_pose_refined && refined);
       if (report.camera.found && better) window_camera = observe_camera();
-      const bool own_is_coarse = !report.camera.found || report.camera.rim_rms_px == 0.0;
-      if (report.lidar.found && own_is_coarse && window_camera) camera = window_camera;
+      if (report.lidar.found && !refined && window_camera) camera = window_camera;
       if (report.lidar.failed_stage != "accumulating") window_camera.reset();  // the window is closed
     }
     if (check && report.lidar.found && (report.camera.found || camera)) {

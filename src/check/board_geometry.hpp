@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace l2s::detail {
@@ -18,6 +19,15 @@ inline double median(std::vector<double> values) {
   const auto mid = values.begin() + values.size() / 2;
   std::nth_element(values.begin(), mid, values.end());
   return *mid;
+}
+
+/// Robust sigma (1.4826 times the median absolute deviation) of `values`
+/// about `centre`; NaN when empty.
+inline double robust_sigma(const std::vector<double>& values, double centre) {
+  std::vector<double> deviations;
+  deviations.reserve(values.size());
+  for (const double v : values) deviations.push_back(std::abs(v - centre));
+  return 1.4826 * median(std::move(deviations));
 }
 
 /// [m] Distance of a board-frame point from the nearest contour of the

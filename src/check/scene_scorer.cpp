@@ -129,12 +129,8 @@ void SceneScorer::board(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   const Eigen::Vector3d tilt(median(tilts[0]), median(tilts[1]), median(tilts[2]));
   scores.plane_tilt = std::asin(std::min(1.0, tilt.norm()));
   if (board_frames_.size() >= 3) {
-    Eigen::Vector3d scatter;
-    for (int k = 0; k < 3; ++k) {
-      std::vector<double> deviations;
-      for (const double t : tilts[k]) deviations.push_back(std::abs(t - tilt[k]));
-      scatter[k] = 1.4826 * median(deviations);
-    }
+    const Eigen::Vector3d scatter(robust_sigma(tilts[0], tilt[0]), robust_sigma(tilts[1], tilt[1]),
+                                  robust_sigma(tilts[2], tilt[2]));
     scores.pose_scatter = std::asin(std::min(1.0, scatter.norm()));
   }
   scores.outline_px = median(outline_px);
@@ -163,9 +159,7 @@ SceneScorer::PlaneFit SceneScorer::plane_fit(const CheckFrame& frame, const Eige
     heights.push_back(plane.signedDistance(in_camera.back()));
   }
   fit.offset = median(heights);
-  std::vector<double> deviations;
-  for (const double h : heights) deviations.push_back(std::abs(h - fit.offset));
-  fit.spread = 1.4826 * median(deviations);
+  fit.spread = robust_sigma(heights, fit.offset);
   std::vector<std::size_t> all(in_camera.size());
   std::iota(all.begin(), all.end(), 0);
   Eigen::Vector3d n_lidar = fit_plane(in_camera, all).normal();
