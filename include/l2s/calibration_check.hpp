@@ -150,7 +150,7 @@ class L2S_EXPORT CalibrationCheck {
     static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     double edge_score = 0.0;        ///< share of the lidar edges seen in the images that lie on image edges (kernel-weighted), 0..1
     double scene_edge_score = 0.0;  ///< the same for the edges off the board (what tells a turned board apart)
-    int edge_points = 0;            ///< lidar edges scored (in the image under the checked transform)
+    int edge_points = 0;            ///< lidar edges scored (in the image under this transform)
     int scene_edge_points = 0;      ///< of which off the board
     double depth_agreement = kNaN;  ///< share of lidar returns with stereo depth at their pixel that agree with it, 0..1
     int depth_points = 0;           ///< lidar returns compared with stereo

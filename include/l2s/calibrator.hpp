@@ -133,7 +133,7 @@ class L2S_EXPORT Calibrator {
     bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
     // The scene-level check of the result (calibration_check.hpp).
     bool check_result = true;  ///< result() checks the transform against the scene and fills Result::quality
-    int check_frames = 8;      ///< frames kept for the check, evenly spread over the frames used (between this and twice this are held), >= 1
+    int check_frames = 8;      ///< frames kept for the check, evenly spread over the frames used (between this and twice this are held; while fewer used frames came, frames without the board on both sides fill up to as many again), >= 1
     SceneObserver::Params observer;   ///< what is kept of each checked frame
     CalibrationCheck::Params check;   ///< scoring and verdict thresholds
 
@@ -238,7 +238,8 @@ class L2S_EXPORT Calibrator {
   Result result() const;
 
   /// The frames kept for the check (CheckFrame, evenly spread over the used
-  /// frames), to check any other transform with CalibrationCheck.
+  /// frames, and while those are few, over the frames without the board on
+  /// both sides too), to check any other transform with CalibrationCheck.
   const std::vector<CheckFrame>& check_frames() const;
 
   /// Forgets every frame.

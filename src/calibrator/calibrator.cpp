@@ -42,6 +42,13 @@ CameraObservation observation_from_centers(const HoleCenters& centers) {
   return out;
 }
 
+/// A frame without the board still tests a transform by its depth edges
+/// against the image's and its returns against the stereo depth.
+bool has_scene_evidence(const CheckFrame& frame) {
+  const bool lidar = !frame.lidar.scene_edges.empty() || !frame.lidar.scene.empty();
+  return lidar && (!frame.camera.edges.empty() || !frame.camera.depth.empty());
+}
+
 }  // namespace
 
 struct Calibrator::Impl {
@@ -80,11 +87,19 @@ struct Calibrator::Impl {
       if (report.lidar.found && !refined && window_camera) camera = window_camera;
       if (report.lidar.failed_stage != "accumulating") window_camera.reset();  // the window is closed
     }
-    if (check && report.lidar.found && (report.camera.found || camera)) {
-      if (check_frames.wants_next())
-        check_frames.keep(CheckFrame{report.id, observe_lidar(), camera ? *camera : *observe_camera()});
-      else
-        check_frames.skip();
+    if (check) {
+      using Kind = detail::CheckFrameKeeper::Kind;
+      const Kind kind = report.lidar.found && (report.camera.found || camera) ? Kind::Board : Kind::Scene;
+      if (!check_frames.wants_next(kind)) {
+        check_frames.skip(kind);
+      } else {
+        CheckFrame frame{report.id, observe_lidar(), camera ? *camera : *observe_camera()};
+        // A frame the check cannot use counts as seen (the stride stays even).
+        if (kind == Kind::Board || has_scene_evidence(frame))
+          check_frames.keep(kind, std::move(frame));
+        else
+          check_frames.skip(kind);
+      }
     }
     report.camera.observation.reset();  // held by the kept CheckFrame, if at all
     frames.push_back(report);
@@ -196,13 +211,14 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
     report.camera = camera_branch();
   }
   std::shared_ptr<const CameraObservation> camera_observation;  // made once, when asked for
+  const bool lidar_found = report.lidar.found, camera_found = report.camera.found;
   FrameReport recorded = impl_->record(
       std::move(report), id, ring_free,
-      [&] { return observe_lidar(lidar, lidar_trace, true, impl.observer); },
+      [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl.observer); },
       [&] {
         if (!camera_observation)
           camera_observation = std::make_shared<const CameraObservation>(
-              observe_camera(left, camera_trace, true, impl.cameras, impl.observer));
+              observe_camera(left, camera_trace, camera_found, impl.cameras, impl.observer));
         return camera_observation;
       });
   recorded.milliseconds = impl_->frames.back().milliseconds = milliseconds_since(start);
@@ -246,15 +262,17 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const st
   report.camera = camera.valid() ? camera.get() : camera_branch();
   // The check sees the left image's edges and the markers' board pose (no
   // stereo depth): made only for the frames it keeps.
-  const std::shared_ptr<const CameraObservation> pose = report.camera.observation;
+  const std::shared_ptr<const CameraObservation> pose =
+      report.camera.found ? report.camera.observation : std::shared_ptr<const CameraObservation>();
   const auto observe_camera = [&] {
     auto observation = std::make_shared<CameraObservation>(pose ? *pose : CameraObservation{});
     observation->edges = impl.observer.observe_edges(left, impl.cameras);
     return std::shared_ptr<const CameraObservation>(std::move(observation));
   };
+  const bool lidar_found = report.lidar.found;
   FrameReport recorded = impl.record(
-      std::move(report), id, ring_free, [&] { return observe_lidar(lidar, lidar_trace, true, impl.observer); },
-      observe_camera);
+      std::move(report), id, ring_free,
+      [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl.observer); }, observe_camera);
   recorded.milliseconds = impl.frames.back().milliseconds = milliseconds_since(start);
   return recorded;
 }
@@ -268,12 +286,14 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera,
   report.lidar = impl_->lidar.detect(lidar, ring_free, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
+  const bool lidar_found = report.lidar.found;
   return impl_->record(
       std::move(report), id, ring_free,
-      [&] { return observe_lidar(lidar, lidar_trace, true, impl_->observer); },
+      [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl_->observer); },
       [&] {
-        return camera.observation ? camera.observation
-                                  : std::make_shared<const CameraObservation>(observation_from_centers(camera.centers));
+        if (camera.observation) return camera.observation;
+        return std::make_shared<const CameraObservation>(camera.found ? observation_from_centers(camera.centers)
+                                                                      : CameraObservation{});
       });
 }
 

@@ -23,6 +23,18 @@ std::vector<const CheckFrame*> spread(const std::vector<const CheckFrame*>& all,
   return out;
 }
 
+/// Up to `limit` of `all`, the frames with the board on both sides first
+/// (they hold the richest evidence; a ring-free lidar's is its accumulated
+/// window, where the others hold a sparse sweep each), the rest evenly spread.
+std::vector<const CheckFrame*> boards_first(const std::vector<const CheckFrame*>& all, int limit) {
+  std::vector<const CheckFrame*> boards, others;
+  for (const CheckFrame* frame : all)
+    (frame->camera.T_camera_board && !frame->lidar.board.empty() ? boards : others).push_back(frame);
+  std::vector<const CheckFrame*> out = spread(boards, limit);
+  for (const CheckFrame* frame : spread(others, limit - static_cast<int>(out.size()))) out.push_back(frame);
+  return out;
+}
+
 }  // namespace
 
 SceneScorer::SceneScorer(const std::vector<CheckFrame>& frames, const LeftView& view, const Target& target,
@@ -50,8 +62,8 @@ SceneScorer::SceneScorer(const std::vector<CheckFrame>& frames, const LeftView& 
     board_frames_.erase(std::remove_if(board_frames_.begin(), board_frames_.end(),
                                        [&](const CheckFrame* f) { return !refined(f); }),
                         board_frames_.end());
-  edge_frames_ = spread(with_edges, params.max_edge_frames);
-  depth_frames_ = spread(with_depth, params.max_edge_frames);
+  edge_frames_ = boards_first(with_edges, params.max_edge_frames);
+  depth_frames_ = boards_first(with_depth, params.max_edge_frames);
 }
 
 EdgeSums SceneScorer::edges(const Eigen::Isometry3d& T_camera_lidar, int level) const {
