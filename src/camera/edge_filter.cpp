@@ -206,17 +206,41 @@ std::vector<int> most_supported_line(const std::vector<Eigen::Vector2d>& uv, con
   return best_inliers;
 }
 
+/// Whether the board lies on one side of the line only, along its run
+/// [t0, t1]: board points in a band beside it (beyond the stereo's fattening
+/// of the border) are counted on each side. A long level line inside the
+/// board (wood grain, a printed stripe) has board on both sides; removing it
+/// as a border spent the budget of border lines and left the real border to
+/// pull the circles (random scene 537407694: grain along the rows).
+bool board_on_one_side(const Line2& line, double t0, double t1, const std::vector<Eigen::Vector2d>& board_uv) {
+  constexpr double kNear = 0.03, kFar = 0.08;  // [m] the band beside the line
+  constexpr double kOuterShare = 0.25;         // the outer side holds at most this share of the inner's points
+  int left = 0, right = 0;
+  const Eigen::Vector2d normal(-line.direction.y(), line.direction.x());
+  for (const Eigen::Vector2d& p : board_uv) {
+    const Eigen::Vector2d d = p - line.point;
+    const double t = d.dot(line.direction), n = d.dot(normal);
+    if (t < t0 || t > t1 || std::abs(n) < kNear || std::abs(n) > kFar) continue;
+    ++(n > 0.0 ? left : right);
+  }
+  return std::min(left, right) <= kOuterShare * std::max(left, right);
+}
+
 /// Which points lie on the board's border lines (step 2 of the file
 /// comment); counts them and the lines in `result`. A rejected candidate
-/// (hole tangent, short piece) blocks its points and the search goes on, so
-/// a border with fewer points than it is still found.
-std::vector<bool> border_line_points(const std::vector<Eigen::Vector2d>& uv, const Target& target,
-                                     const EdgeFilter::Params& params, EdgeFilter::Result& result) {
+/// (hole tangent, short piece, a line with board on both sides) blocks its
+/// points and the search goes on, so a border with fewer points than it is
+/// still found.
+std::vector<bool> border_line_points(const std::vector<Eigen::Vector2d>& uv, const std::vector<Eigen::Vector2d>& board_uv,
+                                     const Target& target, const EdgeFilter::Params& params,
+                                     EdgeFilter::Result& result) {
   std::vector<bool> removed(uv.size(), false);
   std::vector<bool> blocked(uv.size(), false);  // on a rejected line: kept, not sampled again
   std::mt19937_64 rng(params.seed);
   const double cos_tilt = std::cos(params.max_line_tilt_deg * M_PI / 180.0);
-  const int max_attempts = 3 * params.max_border_lines;
+  // Lines inside the board (grain, stripes) are tried and blocked before the
+  // borders they outnumber; a wood-grain board has dozens.
+  const int max_attempts = 12 * params.max_border_lines;
   for (int attempt = 0; params.remove_border_lines && attempt < max_attempts &&
                         result.border_lines < params.max_border_lines;
        ++attempt) {
@@ -239,7 +263,7 @@ std::vector<bool> border_line_points(const std::vector<Eigen::Vector2d>& uv, con
     if (on_line.empty()) break;
     const auto [t0, t1] = longest_run(t, params.max_gap);
     const double side = horizontal ? target.board_width : target.board_height;
-    if (!level || t1 - t0 < params.min_border_fraction * side) {
+    if (!level || t1 - t0 < params.min_border_fraction * side || !board_on_one_side(fitted, t0, t1, board_uv)) {
       for (int k : best_inliers) blocked[k] = true;
       continue;
     }
@@ -293,8 +317,9 @@ EdgeFilter::Result EdgeFilter::filter(const Image& left, const CameraInfo& camer
   const EdgePixels found = edge_pixels(image, camera, board_cloud, plane_camera, params_);
   result.sobel_threshold = found.threshold;
   result.edge_points = found.points.size();
-  const std::vector<bool> removed =
-      border_line_points(board_plane_uv(found.points, plane_camera), target, params_, result);
+  const std::vector<bool> removed = border_line_points(board_plane_uv(found.points, plane_camera),
+                                                       board_plane_uv(board_cloud.points, plane_camera), target,
+                                                       params_, result);
   for (std::size_t k = 0; k < found.points.size(); ++k) {
     if (removed[k]) continue;
     result.edges.points.push_back(found.points[k]);
