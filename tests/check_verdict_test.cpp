@@ -114,6 +114,27 @@ TEST(CheckVerdict, DepthTiltAloneMakesAResultSuspect) {
   EXPECT_EQ(report.verdict, Verdict::Failed);
 }
 
+// The tilt is measured on the returns off the board; with few of them on
+// coarse stereo, frames disagree on it (calibrator_end_to_end setting 8,
+// paper preset: 4.4 mm / 0.37 deg, a tilt of 2.04 deg). The rule grades the
+// tilt less twice its frame-to-frame standard error, so a tilt that the
+// frames do not agree on is not evidence, and one they agree on still is.
+TEST(CheckVerdict, DepthTiltCountsBeyondItsFrameToFrameUncertainty) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double tilt_deg, double sigma_deg) {
+    CalibrationCheck::Report report = agreeing();
+    report.scores.depth_tilt = tilt_deg * M_PI / 180;
+    report.scores.depth_tilt_sigma = sigma_deg * M_PI / 180;
+    detail::judge(report, params, 1000.0);
+    return report;
+  };
+  EXPECT_EQ(judged(2.5, 0.4).verdict, Verdict::Ok);
+  EXPECT_EQ(judged(2.5, 0.1).verdict, Verdict::Suspect);
+  EXPECT_EQ(judged(2.5, CalibrationCheck::Scores::kNaN).verdict, Verdict::Suspect);  // under 3 frames: as measured
+  EXPECT_EQ(judged(12.0, 0.5).verdict, Verdict::Failed);
+  EXPECT_EQ(judged(12.0, 2.0).verdict, Verdict::Suspect);
+}
+
 // A wrong transform puts lidar returns on pixels of other surfaces: most of
 // them disagree with stereo, however well the board evidence agrees (a
 // camera that took a wall patch for the board, or a fit turned about a far

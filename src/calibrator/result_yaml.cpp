@@ -35,6 +35,7 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   out << YAML::Key << "depth_points" << YAML::Value << s.depth_points;
   number("depth_bias", s.depth_bias);
   number("depth_tilt_deg", s.depth_tilt * 180.0 / M_PI);
+  number("depth_tilt_sigma_deg", s.depth_tilt_sigma * 180.0 / M_PI);
   number("plane_offset_m", s.plane_offset);
   number("plane_offset_px", s.plane_offset_px);
   number("plane_spread_m", s.plane_spread);

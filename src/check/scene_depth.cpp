@@ -56,6 +56,7 @@ struct DepthSample {
   Eigen::Vector3d p_camera;  // [m] the lidar return in the camera frame
   double x, y;               // normalised image coordinates (rectified frame)
   double relative;           // (lidar - stereo) / stereo
+  int frame;                 // index of its frame among the depth frames
 };
 
 /// The samples on the largest plane of the lidar returns (5 cm), found by
@@ -107,24 +108,64 @@ std::pair<Eigen::Matrix3d, Eigen::Vector3d> biweighted_system(const std::vector<
   return {A, b};
 }
 
-double depth_tilt(const std::vector<DepthSample>& all, double depth_noise) {
-  if (all.size() < 100) return std::numeric_limits<double>::quiet_NaN();
+/// The slope (b, c) of relative = a + b x + c y on `samples`, refined from
+/// `fit` by iteratively reweighted least squares; false when an image
+/// direction has too little spread (about +-0.1 of the focal length) to give one.
+bool fit_slope(const std::vector<DepthSample>& samples, Eigen::Vector3d& fit, int iterations) {
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    const auto [A, b] = biweighted_system(samples, fit, [](const DepthSample& s) { return s.relative; });
+    if (!(A(1, 1) / A(0, 0) >= 0.005 && A(2, 2) / A(0, 0) >= 0.005)) return false;
+    fit = A.ldlt().solve(b);
+  }
+  return true;
+}
+
+/// The tilt and its frame-to-frame uncertainty, both [rad].
+struct Tilt {
+  double value = CalibrationCheck::Scores::kNaN;
+  double sigma = CalibrationCheck::Scores::kNaN;
+};
+
+/// The standard error of the slope's length, by a delete-one-frame
+/// jackknife: stereo noise and SGBM's mismatches differ from image pair to
+/// image pair, so frames disagree on the slope by what they add to it, while
+/// a rotation error tilts every frame alike. NaN with fewer than 3 frames.
+double slope_sigma(const std::vector<DepthSample>& samples, const Eigen::Vector3d& fit, int frames) {
+  if (frames < 3) return CalibrationCheck::Scores::kNaN;
+  const Eigen::Vector2d slope = fit.tail<2>();
+  if (slope.norm() == 0.0) return 0.0;
+  const Eigen::Vector2d along = slope.normalized();
+  std::vector<double> lengths;
+  for (int left_out = 0; left_out < frames; ++left_out) {
+    std::vector<DepthSample> kept;
+    for (const DepthSample& s : samples)
+      if (s.frame != left_out) kept.push_back(s);
+    Eigen::Vector3d partial = fit;
+    if (kept.size() < 100 || !fit_slope(kept, partial, 3)) continue;
+    lengths.push_back(along.dot(partial.tail<2>()));
+  }
+  const double n = static_cast<double>(lengths.size());
+  if (n < 3) return CalibrationCheck::Scores::kNaN;
+  double mean = 0.0, spread = 0.0;
+  for (double l : lengths) mean += l / n;
+  for (double l : lengths) spread += (l - mean) * (l - mean);
+  return std::sqrt((n - 1.0) / n * spread);
+}
+
+Tilt depth_tilt(const std::vector<DepthSample>& all, double depth_noise, int frames) {
+  if (all.size() < 100) return {};
   const std::vector<DepthSample> samples = dominant_plane(all);
-  if (samples.size() < 100) return std::numeric_limits<double>::quiet_NaN();
+  if (samples.size() < 100) return {};
   std::vector<double> relative;
   for (const DepthSample& s : samples) relative.push_back(s.relative);
   Eigen::Vector3d x(median(relative), 0.0, 0.0);
-  for (int iteration = 0; iteration < 10; ++iteration) {
-    const auto [A, b] = biweighted_system(samples, x, [](const DepthSample& s) { return s.relative; });
-    // Both image directions must be spread (about +-0.1 of the focal length) to give a slope.
-    if (A(1, 1) / A(0, 0) < 0.005 || A(2, 2) / A(0, 0) < 0.005) return std::numeric_limits<double>::quiet_NaN();
-    x = A.ldlt().solve(b);
-  }
+  if (!fit_slope(samples, x, 10)) return {};
   // The depth's gradient across the image on the same samples, same weights.
   const auto [A, b] = biweighted_system(samples, x, [](const DepthSample& s) { return s.p_camera.z(); });
   const Eigen::Vector3d z = A.ldlt().solve(b);
   const double bias_tilt = depth_noise * std::hypot(z[1], z[2]);
-  return std::atan(std::max(0.0, std::hypot(x[1], x[2]) - bias_tilt));
+  const double sigma = slope_sigma(samples, x, frames);
+  return {std::atan(std::max(0.0, std::hypot(x[1], x[2]) - bias_tilt)), std::atan(sigma)};
 }
 
 }  // namespace
@@ -134,7 +175,8 @@ void SceneScorer::depth(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
   int agree = 0, compared = 0;
   std::vector<double> relative;  // (lidar - stereo) / stereo of the returns within 20 %
   std::vector<DepthSample> off_board;
-  for (const CheckFrame* frame : depth_frames_) {
+  for (std::size_t f = 0; f < depth_frames_.size(); ++f) {
+    const CheckFrame* frame = depth_frames_[f];
     const DepthMap& map = frame->camera.depth;
     for (const VisibleReturn& r : visible_returns(projector, frame->lidar.scene)) {
       const Eigen::Vector3d p_camera = T_camera_lidar * r.p_lidar;
@@ -149,14 +191,18 @@ void SceneScorer::depth(const Eigen::Isometry3d& T_camera_lidar, CalibrationChec
       relative.push_back((r.depth - stereo) / stereo);
       if (!T_camera_board || !near_board(p_camera, *T_camera_board, target_))
         off_board.push_back({p_camera, (r.u - view_.P(0, 2)) / view_.P(0, 0), (r.v - view_.P(1, 2)) / view_.P(1, 1),
-                             relative.back()});
+                             relative.back(), static_cast<int>(f)});
     }
   }
   scores.depth_points = compared;
   if (relative.size() >= 30) scores.depth_bias = median(relative);
   std::vector<double> noise;
   for (const CheckFrame* frame : depth_frames_) noise.push_back(frame->camera.depth.depth_noise);
-  scores.depth_tilt = noise.empty() ? CalibrationCheck::Scores::kNaN : depth_tilt(off_board, median(noise));
+  if (!noise.empty()) {
+    const Tilt tilt = depth_tilt(off_board, median(noise), depth_frames());
+    scores.depth_tilt = tilt.value;
+    scores.depth_tilt_sigma = tilt.sigma;
+  }
   scores.depth_agreement = compared > 0 ? static_cast<double>(agree) / compared : CalibrationCheck::Scores::kNaN;
 }
 

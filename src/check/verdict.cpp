@@ -53,10 +53,13 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
   j.grade(s.outline_px / fx, p.suspect_outline_deg * kDeg, p.failed_outline_deg * kDeg,
           format("lidar board edges lie %.1f px (%.2f deg) from the board's outline and hole rims", s.outline_px,
                  s.outline_px / fx / kDeg));
-  j.grade(s.depth_tilt, p.suspect_depth_tilt_deg * kDeg, p.failed_depth_tilt_deg * kDeg,
-          format("off the board, lidar depths tilt %.2f deg against the stereo depths (a rotation error; the board "
-                 "may have moved between the lidar sweep and the images)",
-                 s.depth_tilt / kDeg));
+  // Graded by its lower bound: coarse stereo with few returns off the board
+  // tilts a good result by up to twice its frame-to-frame spread.
+  const double tilt_sigma = std::isfinite(s.depth_tilt_sigma) ? s.depth_tilt_sigma : 0.0;
+  j.grade(s.depth_tilt - 2.0 * tilt_sigma, p.suspect_depth_tilt_deg * kDeg, p.failed_depth_tilt_deg * kDeg,
+          format("off the board, lidar depths tilt %.2f +- %.2f deg against the stereo depths (a rotation error; the "
+                 "board may have moved between the lidar sweep and the images)",
+                 s.depth_tilt / kDeg, tilt_sigma / kDeg));
   if (s.depth_points >= 100)  // fewer: too little to judge by
     j.grade(1.0 - s.depth_agreement, 1.0 - p.suspect_depth_agreement, 1.0 - p.failed_depth_agreement,
             format("only %.0f %% of the lidar returns agree with the stereo depth at their pixels (a right "
