@@ -229,26 +229,59 @@ TEST(SceneObserver, FindsSilhouettesWithoutRings) {
   for (const auto& edge : observed.scene_edges) EXPECT_NEAR(edge.norm(), 2.0, 1e-9);
 }
 
+// Stereo depth tilted across the image by 3 deg against the lidar's: a
+// rotation error's signature where stereo measured it; on a plain wall,
+// where SGBM fills the depth in from the surroundings (random scene
+// 1262151257: 20 deg on a right result), no evidence at all.
+TEST(CalibrationCheck, ADepthTiltCountsOnlyWhereStereoHasTexture) {
+  const CameraInfo& left = simulator().cameras().left;
+  const auto tilted = [&](std::uint8_t textured) -> CalibrationCheck::Report {
+    std::vector<CheckFrame> out = frames();
+    for (CheckFrame& frame : out) {
+      DepthMap& map = frame.camera.depth;
+      EXPECT_FALSE(map.empty());
+      for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i) {
+          const double x = ((i + 0.5) * map.cell - 0.5 - left.cx()) / left.fx();
+          map.depth[static_cast<std::size_t>(j) * map.width + i] *= static_cast<float>(1.0 + std::tan(3.0 * M_PI / 180) * x);
+        }
+      map.textured.assign(map.depth.size(), textured);
+    }
+    return make_check().check(out, simulator().T_lidar_camera());
+  };
+  const auto on_texture = tilted(1);
+  EXPECT_GT(on_texture.scores.depth_tilt * 180 / M_PI, 2.5) << reasons(on_texture);
+  EXPECT_NE(on_texture.verdict, Verdict::Ok) << reasons(on_texture);
+  const auto plain = tilted(0);
+  EXPECT_TRUE(std::isnan(plain.scores.depth_tilt)) << reasons(plain);
+  EXPECT_EQ(plain.scores.depth_tilt_texture, 0.0);
+  EXPECT_EQ(plain.verdict, Verdict::Ok) << reasons(plain);
+}
+
 // Stripes along the rows (wood grain on a landscape board) give SGBM nothing
 // to match along them; stripes across them, and plain faces, do not count.
+// A 120 x 80 image of 3 px stripes along or across the rows, with noise
+// of one gray level.
+Image striped(bool along_rows) {
+  const int width = 120, height = 80;
+  Image image;
+  image.width = width;
+  image.height = height;
+  image.channels = 1;
+  image.pixels.resize(static_cast<std::size_t>(width) * height);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int stripe = (along_rows ? y : x) / 3 % 2;
+      image.pixels[static_cast<std::size_t>(y) * width + x] =
+          static_cast<std::uint8_t>(std::clamp(100.0 + 40.0 * stripe + noise(rng), 0.0, 255.0));
+    }
+  return image;
+}
+
 TEST(SceneObserver, MeasuresTheShareOfTextureAlongTheRows) {
   const int width = 120, height = 80;
-  const auto striped = [&](bool along_rows) {
-    Image image;
-    image.width = width;
-    image.height = height;
-    image.channels = 1;
-    image.pixels.resize(static_cast<std::size_t>(width) * height);
-    std::mt19937 rng(3);
-    std::normal_distribution<double> noise(0.0, 1.0);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const int stripe = (along_rows ? y : x) / 3 % 2;
-        image.pixels[static_cast<std::size_t>(y) * width + x] =
-            static_cast<std::uint8_t>(std::clamp(100.0 + 40.0 * stripe + noise(rng), 0.0, 255.0));
-      }
-    return image;
-  };
   StereoCloud board;
   for (int y = 10; y < height - 10; ++y)
     for (int x = 10; x < width - 10; ++x) {
@@ -262,6 +295,33 @@ TEST(SceneObserver, MeasuresTheShareOfTextureAlongTheRows) {
   std::fill(plain.pixels.begin(), plain.pixels.end(), 120);
   EXPECT_EQ(observer.row_texture_share(plain, board), 0.0);
   EXPECT_TRUE(std::isnan(observer.row_texture_share(plain, StereoCloud{})));
+}
+
+// SGBM matches along the rows: stripes across them give it texture in
+// every matching window; stripes along them, and a face of nothing but
+// noise, give it none.
+TEST(SceneObserver, MarksTheDepthCellsStereoCanMatch) {
+  const SceneObserver observer;
+  const auto textured_share = [&](const Image& image) {
+    DepthMap map;
+    map.width = image.width / 4;
+    map.height = image.height / 4;
+    map.depth.assign(static_cast<std::size_t>(map.width) * map.height, 2.0f);
+    EXPECT_TRUE(map.textured_at(10.0, 10.0));  // not measured yet: no verdict
+    observer.mark_texture(image, map);
+    EXPECT_EQ(map.textured.size(), map.depth.size());
+    return std::count(map.textured.begin(), map.textured.end(), 1) / static_cast<double>(map.depth.size());
+  };
+  EXPECT_GT(textured_share(striped(false)), 0.95);
+  EXPECT_LT(textured_share(striped(true)), 0.05);
+  Image noise_only = striped(true);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(120.0, 1.0);
+  for (auto& pixel : noise_only.pixels) pixel = static_cast<std::uint8_t>(std::lround(noise(rng)));
+  EXPECT_LT(textured_share(noise_only), 0.05);
+  DepthMap empty;
+  observer.mark_texture(striped(false), empty);  // no depth: nothing to mark
+  EXPECT_TRUE(empty.textured.empty());
 }
 
 TEST(SceneObserver, RejectsInvalidParams) {

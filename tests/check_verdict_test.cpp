@@ -133,6 +133,7 @@ TEST(CheckVerdict, DepthTiltCountsBeyondItsFrameToFrameUncertainty) {
   EXPECT_EQ(judged(2.5, CalibrationCheck::Scores::kNaN).verdict, Verdict::Suspect);  // under 3 frames: as measured
   EXPECT_EQ(judged(12.0, 0.5).verdict, Verdict::Failed);
   EXPECT_EQ(judged(12.0, 2.0).verdict, Verdict::Suspect);
+  EXPECT_EQ(judged(1.0, 2.0).verdict, Verdict::Ok);  // a bound below zero is no tilt, not a large one
 }
 
 // A wrong transform puts lidar returns on pixels of other surfaces: most of

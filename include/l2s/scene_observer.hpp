@@ -49,10 +49,20 @@ struct L2S_EXPORT DepthMap {
   double cell = 4.0;  ///< [px] side of a cell; cell (i, j) covers left pixels [i * cell, (i + 1) * cell) - 0.5
   std::vector<float> depth;  ///< [m] optical z of the stereo point, NaN = no match
   double depth_noise = 0.0;  ///< [1/m] depth sigma of one match at depth z is depth_noise * z^2
+  /// Per cell, 1 where the left image has texture along the rows (a
+  /// gradient along them above the image noise): SGBM measures a disparity
+  /// only there and fills the rest in from the surroundings (a plain wall
+  /// takes depths that slope towards the board before it). Empty when not
+  /// measured (SceneObserver::mark_texture).
+  std::vector<std::uint8_t> textured;
 
   bool empty() const { return depth.empty(); }
   /// [m] at the cell holding pixel `uv`; NaN outside or unmatched.
   double at(double u, double v) const;
+  /// Row-major index of the cell holding pixel `uv`; -1 outside.
+  long cell_index(double u, double v) const;
+  /// Whether the cell holding pixel `uv` is textured; true when not measured.
+  bool textured_at(double u, double v) const;
 };
 
 /// The lidar side of one frame (lidar frame).
@@ -140,6 +150,9 @@ class L2S_EXPORT SceneObserver {
   /// along the rows was up to 2 px of disparity off. 0..1, NaN without
   /// points inside the image.
   double row_texture_share(const Image& rectified_left, const StereoCloud& board) const;
+  /// Fills `map.textured` from `rectified_left` (the image `map` was
+  /// matched on, same size as the camera). Nothing when `map` is empty.
+  void mark_texture(const Image& rectified_left, DepthMap& map) const;
 
  private:
   Params params_;

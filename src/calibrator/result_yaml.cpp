@@ -36,6 +36,7 @@ void emit_scores(YAML::Emitter& out, const CalibrationCheck::Scores& s) {
   number("depth_bias", s.depth_bias);
   number("depth_tilt_deg", s.depth_tilt * 180.0 / M_PI);
   number("depth_tilt_sigma_deg", s.depth_tilt_sigma * 180.0 / M_PI);
+  number("depth_tilt_texture", s.depth_tilt_texture);
   number("plane_offset_m", s.plane_offset);
   number("plane_offset_px", s.plane_offset_px);
   number("plane_spread_m", s.plane_spread);

@@ -51,6 +51,7 @@ CameraObservation observe_camera(const Image& left, const CameraInspection& insp
                                        inspection.located->stereo.depth_noise);
   else if (!inspection.located && inspection.stereo && inspection.stereo->found)
     out.depth = observer.observe_depth(inspection.stereo->disparity, cameras, inspection.stereo->depth_noise);
+  observer.mark_texture(rectified_left, out.depth);
   // Edges of the rectified left image: the branch's own rectification when
   // it made one (the same P, so the same pixels, and no second remap).
   if (with_edges)

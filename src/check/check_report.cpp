@@ -5,15 +5,17 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
 
 namespace l2s {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-std::string line(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0, double e = 0.0) {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, a, b, c, d, e);
+template <class... Numbers>
+std::string line(const char* pattern, Numbers... numbers) {
+  char text[320];
+  std::snprintf(text, sizeof text, pattern, static_cast<double>(numbers)...);
   return text;
 }
 
@@ -23,8 +25,14 @@ void describe_scores(std::ostringstream& out, const CalibrationCheck::Scores& s,
               s.edge_points, s.scene_edge_score, s.scene_edge_points);
   if (std::isfinite(s.depth_agreement))
     out << indent
-        << line("depth      %.3f of %.0f lidar returns agree with stereo; bias %+.1f %%, tilt off the board %.2f +- %.2f deg\n",
-                s.depth_agreement, s.depth_points, 100.0 * s.depth_bias, s.depth_tilt / kDeg, s.depth_tilt_sigma / kDeg);
+        << line("depth      %.3f of %.0f lidar returns agree with stereo; bias %+.1f %%, ", s.depth_agreement,
+                s.depth_points, 100.0 * s.depth_bias)
+        << (std::isfinite(s.depth_tilt) ? line("tilt off the board %.2f +- %.2f deg", s.depth_tilt / kDeg,
+                                               s.depth_tilt_sigma / kDeg)
+                                        : std::string("tilt off the board not measured"))
+        << (std::isfinite(s.depth_tilt_texture) ? line(" (its plane %.0f %% on texture)", 100.0 * s.depth_tilt_texture)
+                                                : std::string())
+        << "\n";
   if (std::isfinite(s.plane_offset))
     out << indent
         << line("board      plane offset %+.1f mm (spread %.1f mm), tilt %.2f deg (scatter over frames %.2f deg)\n",

@@ -85,6 +85,16 @@ void drop_near_jumps(DepthMap& map, double margin_px) {
     }
 }
 
+constexpr int kMatchWindow = 5;  // [px] SGBM's default block: the texture a match rests on
+
+/// [Sobel magnitude] Twice the mean |Sobel| of the image's noise averaged
+/// over a matching window: a window whose gradient stays below it holds
+/// nothing but noise for stereo to match.
+double texture_floor(const cv::Mat& gray) {
+  constexpr double kNoiseMeanPerSigma = 2.76;  // mean |Sobel| of pure noise: 0.8 * sqrt(12) sigma
+  return 2.0 * kNoiseMeanPerSigma * detail::image_noise_sigma(gray);
+}
+
 }  // namespace
 
 double EdgeDistanceMap::at(double u, double v) const {
@@ -93,10 +103,21 @@ double EdgeDistanceMap::at(double u, double v) const {
   return unit * distance[static_cast<std::size_t>(y) * width + x];
 }
 
-double DepthMap::at(double u, double v) const {
+long DepthMap::cell_index(double u, double v) const {
   const long i = static_cast<long>(std::floor((u + 0.5) / cell)), j = static_cast<long>(std::floor((v + 0.5) / cell));
-  if (i < 0 || j < 0 || i >= width || j >= height) return std::numeric_limits<double>::quiet_NaN();
-  return depth[static_cast<std::size_t>(j) * width + i];
+  if (i < 0 || j < 0 || i >= width || j >= height) return -1;
+  return j * width + i;
+}
+
+double DepthMap::at(double u, double v) const {
+  const long k = cell_index(u, v);
+  return k < 0 ? std::numeric_limits<double>::quiet_NaN() : depth[static_cast<std::size_t>(k)];
+}
+
+bool DepthMap::textured_at(double u, double v) const {
+  if (textured.size() != depth.size()) return true;
+  const long k = cell_index(u, v);
+  return k >= 0 && textured[static_cast<std::size_t>(k)] != 0;
 }
 
 void SceneObserver::Params::validate() const {
@@ -180,7 +201,7 @@ double SceneObserver::row_texture_share(const Image& rectified_left, const Stere
   for (const Eigen::Vector2i& p : board.pixels)
     if (inside(p)) box = box.empty() ? cv::Rect(p.x(), p.y(), 1, 1) : box | cv::Rect(p.x(), p.y(), 1, 1);
   if (box.empty()) return std::numeric_limits<double>::quiet_NaN();
-  constexpr int kWindow = 5;
+  constexpr int kWindow = kMatchWindow;
   const cv::Rect padded = (box + cv::Size(2 * kWindow, 2 * kWindow) - cv::Point(kWindow, kWindow)) &
                           cv::Rect(0, 0, gray.cols, gray.rows);
   cv::Mat across, along;  // the gradient across the rows (d/dy) and along them (d/dx)
@@ -190,8 +211,7 @@ double SceneObserver::row_texture_share(const Image& rectified_left, const Stere
   along = cv::abs(along);
   cv::blur(across, across, cv::Size(kWindow, kWindow));
   cv::blur(along, along, cv::Size(kWindow, kWindow));
-  constexpr double kNoiseMeanPerSigma = 2.76;  // mean |Sobel| of pure noise: 0.8 * sqrt(12) sigma
-  const double noise_floor = 2.0 * kNoiseMeanPerSigma * detail::image_noise_sigma(gray);
+  const double noise_floor = texture_floor(gray);
   const std::size_t step = std::max<std::size_t>(1, board.pixels.size() / 4000);
   std::size_t rows_only = 0, sampled = 0;
   for (std::size_t i = 0; i < board.pixels.size(); i += step) {
@@ -203,6 +223,24 @@ double SceneObserver::row_texture_share(const Image& rectified_left, const Stere
   }
   return sampled ? static_cast<double>(rows_only) / static_cast<double>(sampled)
                  : std::numeric_limits<double>::quiet_NaN();
+}
+
+void SceneObserver::mark_texture(const Image& rectified_left, DepthMap& map) const {
+  if (map.empty()) return;
+  const cv::Mat gray = detail::gray_mat(rectified_left, "left");
+  cv::Mat along;  // |d/dx| averaged over a matching window
+  cv::Sobel(gray, along, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
+  along = cv::abs(along);
+  cv::blur(along, along, cv::Size(kMatchWindow, kMatchWindow));
+  const float floor = static_cast<float>(texture_floor(gray));
+  map.textured.assign(map.depth.size(), 0);
+  // Each cell is judged at the pixel under its centre, as its depth is.
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) {
+      const int u = std::min(gray.cols - 1, static_cast<int>(std::lround((i + 0.5) * map.cell - 0.5)));
+      const int v = std::min(gray.rows - 1, static_cast<int>(std::lround((j + 0.5) * map.cell - 0.5)));
+      map.textured[static_cast<std::size_t>(j) * map.width + i] = along.at<float>(v, u) > floor;
+    }
 }
 
 }  // namespace l2s

@@ -4,6 +4,7 @@
 
 #include "check/verdict.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -56,7 +57,7 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
   // Graded by its lower bound: coarse stereo with few returns off the board
   // tilts a good result by up to twice its frame-to-frame spread.
   const double tilt_sigma = std::isfinite(s.depth_tilt_sigma) ? s.depth_tilt_sigma : 0.0;
-  j.grade(s.depth_tilt - 2.0 * tilt_sigma, p.suspect_depth_tilt_deg * kDeg, p.failed_depth_tilt_deg * kDeg,
+  j.grade(std::max(0.0, s.depth_tilt - 2.0 * tilt_sigma), p.suspect_depth_tilt_deg * kDeg, p.failed_depth_tilt_deg * kDeg,
           format("off the board, lidar depths tilt %.2f +- %.2f deg against the stereo depths (a rotation error; the "
                  "board may have moved between the lidar sweep and the images)",
                  s.depth_tilt / kDeg, tilt_sigma / kDeg));
