@@ -157,7 +157,7 @@ class L2S_EXPORT CalibrationCheck {
     double depth_bias = kNaN;       ///< median (lidar - stereo) / stereo depth of the returns within 20 %: a scale error (target size, baseline) or a shift along the view
     double depth_tilt = kNaN;       ///< [rad] off the board, lidar depth against stereo tilts across the image by this beyond what a disparity bias of one matching sigma can tilt on that surface: a rotation error about the camera's x / y axes, whatever the translation
     double depth_tilt_sigma = kNaN; ///< [rad] standard error of depth_tilt from frame to frame (delete-one-frame jackknife; NaN under 3 frames); the verdict grades depth_tilt less twice this
-    double depth_tilt_texture = kNaN; ///< share of the tilt's plane (the largest off the board) on stereo texture (DepthMap::textured); under 0.5 the tilt is not measured (NaN): stereo there is SGBM's fill-in
+    double depth_tilt_texture = kNaN; ///< share of the tilt's plane (the largest off the board) on stereo texture (DepthMap::textured); under 0.15 the tilt is not measured (NaN): stereo there is SGBM's fill-in
     double plane_offset = kNaN;     ///< [m] median distance of lidar board returns from the camera's board plane, the pose its rims give (+: in front)
     double plane_offset_px = kNaN;  ///< [px] that distance as disparity at the board's depth (fx B offset / z^2)
     double stereo_offset = kNaN;    ///< [m] the stereo board plane from the rims' plane at the board's centre (+: in front), median over frames: a scale error of the camera (target size, baseline) or stereo's own bias
