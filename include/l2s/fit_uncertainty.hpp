@@ -63,11 +63,32 @@ L2S_EXPORT void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3
                                        const std::vector<std::vector<Eigen::Vector3d>>& source_groups,
                                        double sigma_t, double sigma_r);
 
+/// [m^2, rad^2] Covariance of a rigid motion (dt, dphi) of a group of points
+/// about their centroid.
+using MotionCovariance = Eigen::Matrix<double, 6, 6>;
+
+/// As above with each group's own covariance of its motion, target frame
+/// (e.g. a stereo camera's depth and tilt error, along and across its line
+/// of sight, which grows with the square of the range); one per group.
+L2S_EXPORT void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
+                                       const std::vector<std::vector<Eigen::Vector3d>>& source_groups,
+                                       const std::vector<MotionCovariance>& motion_covariances);
+
 /// [m] The rms of |target - T source| expected for new pairs at `source`
 /// (source frame) under the fit `u` of T: the residual noise of the fit's
 /// pairs plus the spread of its prediction there. 0 when `u` is not valid.
 L2S_EXPORT double prediction_rms(const FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
                                  const std::vector<Eigen::Vector3d>& source);
+
+/// [rad] The 95 % bound of the rotation as one angle: the norm of its
+/// per-DoF bounds taken as a rotation vector (with their correlations), free
+/// of the roll-pitch-yaw parametrisation: near pitch +-90 deg roll and yaw
+/// trade off, each uncertain by far more than the rotation is. 0 when `u`
+/// is not valid.
+L2S_EXPORT double rotation_bound_95(const FitUncertainty& u, const Eigen::Isometry3d& T_target_source);
+
+/// [m] The norm of the three translation bounds; 0 when `u` is not valid.
+L2S_EXPORT double translation_bound_95(const FitUncertainty& u);
 
 /// Two-sided 95 % quantile of Student's t with `dof` degrees of freedom (>= 1).
 L2S_EXPORT double student_t_95(int dof);

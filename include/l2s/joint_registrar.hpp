@@ -22,6 +22,12 @@ namespace l2s {
 struct PosePair {
   HoleCenters target{};  ///< [m] target sensor frame (the lidar for T_lidar_camera)
   HoleCenters source{};  ///< [m] source sensor frame (the camera)
+  /// What the source's detection of this pose shares across its four
+  /// centres beyond Params' pose bias, as the covariance of a rigid motion
+  /// (dt, dphi) about their centroid, source frame: e.g. a stereo camera's
+  /// depth and tilt error, which grows with the square of the range.
+  /// Zero: nothing more.
+  MotionCovariance source_bias = MotionCovariance::Zero();
 };
 
 /// Thread safety: immutable after construction; estimate() may run concurrently.

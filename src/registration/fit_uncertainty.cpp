@@ -15,6 +15,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -102,17 +103,31 @@ double student_t_95(int dof) {
 void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
                             const std::vector<std::vector<Eigen::Vector3d>>& source_groups, double sigma_t,
                             double sigma_r) {
-  if (!u.valid || !(sigma_t > 0.0 || sigma_r > 0.0)) return;
+  if (!(sigma_t > 0.0 || sigma_r > 0.0)) return;
+  Vector6d motion_variance;
+  motion_variance << Eigen::Vector3d::Constant(sigma_t * sigma_t), Eigen::Vector3d::Constant(sigma_r * sigma_r);
+  add_shared_group_error(u, T_target_source, source_groups,
+                         std::vector<MotionCovariance>(source_groups.size(), motion_variance.asDiagonal()));
+}
+
+void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target_source,
+                            const std::vector<std::vector<Eigen::Vector3d>>& source_groups,
+                            const std::vector<MotionCovariance>& motion_covariances) {
+  if (!u.valid || motion_covariances.size() != source_groups.size()) return;
   Vector6d theta;
   theta << T_target_source.translation(), roll_pitch_yaw(T_target_source.rotation());
   // theta moves by (J^T J)^-1 J^T dr for residual changes dr; a group moved
   // by (dt, dphi) about its centroid c changes its residuals by
   // dt + dphi x (q - c) (target frame, q = T source), i.e. G (dt, dphi).
-  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> groups;  // (J, G) per group
+  struct Group {
+    Eigen::MatrixXd J, G;
+    MotionCovariance motion;
+  };
+  std::vector<Group> groups;
   Matrix6d JtJ = Matrix6d::Zero();
-  for (const auto& group : source_groups) {
+  for (std::size_t g = 0; g < source_groups.size(); ++g) {
     std::vector<Eigen::Vector3d> s;  // the group's finite points
-    for (const auto& p : group)
+    for (const auto& p : source_groups[g])
       if (p.allFinite()) s.push_back(p);
     if (s.empty()) continue;
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -125,17 +140,15 @@ void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target
       G.block<3, 3>(3 * i, 3) << 0, lever.z(), -lever.y(), -lever.z(), 0, lever.x(), lever.y(), -lever.x(), 0;
     }
     JtJ += J.transpose() * J;
-    groups.emplace_back(std::move(J), std::move(G));
+    groups.push_back({std::move(J), std::move(G), motion_covariances[g]});
   }
   const Eigen::FullPivLU<Matrix6d> lu(JtJ);
   if (!lu.isInvertible()) return;
   const Matrix6d JtJ_inverse = lu.inverse();
-  Vector6d motion_variance;
-  motion_variance << Eigen::Vector3d::Constant(sigma_t * sigma_t), Eigen::Vector3d::Constant(sigma_r * sigma_r);
   Matrix6d shared = Matrix6d::Zero();
-  for (const auto& [J, G] : groups) {
-    const Matrix6d M = JtJ_inverse * J.transpose() * G;
-    shared += M * motion_variance.asDiagonal() * M.transpose();
+  for (const Group& group : groups) {
+    const Matrix6d M = JtJ_inverse * group.J.transpose() * group.G;
+    shared += M * group.motion * M.transpose();
   }
   const double t95 = student_t_95(u.dof);
   u.covariance += shared;
@@ -145,6 +158,39 @@ void add_shared_group_error(FitUncertainty& u, const Eigen::Isometry3d& T_target
     u.sigma[k] = std::hypot(residual_sigma, u.sigma_shared[k]);
     u.bound_95[k] = std::hypot(t95 * residual_sigma, 1.95996 * u.sigma_shared[k]);
   }
+}
+
+double translation_bound_95(const FitUncertainty& u) {
+  if (!u.valid) return 0.0;
+  return Eigen::Vector3d(u.bound_95[0], u.bound_95[1], u.bound_95[2]).norm();
+}
+
+double rotation_bound_95(const FitUncertainty& u, const Eigen::Isometry3d& T_target_source) {
+  if (!u.valid) return 0.0;
+  // The bounds with the covariance's correlations between roll, pitch and yaw.
+  const Eigen::Matrix3d C = u.covariance.bottomRightCorner<3, 3>();
+  Eigen::Matrix3d bounds = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double norm = std::sqrt(C(i, i) * C(j, j));
+      const double correlation = norm > 0.0 ? C(i, j) / norm : (i == j ? 1.0 : 0.0);
+      bounds(i, j) = correlation * u.bound_95[3 + i] * u.bound_95[3 + j];
+    }
+  // d(rotation vector) / d(roll, pitch, yaw), by central differences.
+  const Eigen::Vector3d rpy = roll_pitch_yaw(T_target_source.rotation());
+  const auto rotation = [](const Eigen::Vector3d& a) {
+    return pose_from_roll_pitch_yaw(a[0], a[1], a[2], Eigen::Vector3d::Zero()).linear();
+  };
+  constexpr double h = 1e-6;
+  Eigen::Matrix3d J;
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector3d plus = rpy, minus = rpy;
+    plus[k] += h;
+    minus[k] -= h;
+    const Eigen::AngleAxisd turn(rotation(plus) * rotation(minus).transpose());
+    J.col(k) = turn.axis() * turn.angle() / (2.0 * h);
+  }
+  return std::sqrt(std::max(0.0, (J * bounds * J.transpose()).trace()));
 }
 
 double prediction_rms(const FitUncertainty& u, const Eigen::Isometry3d& T_target_source,

@@ -116,6 +116,19 @@ void widen_by_jackknife(const std::vector<JointRegistrar::LeaveOneOut>& loo, int
   }
 }
 
+/// The error a pose's detection shares across its centres, target frame:
+/// the isotropic pose bias of `params` and the pose's own source_bias.
+MotionCovariance pose_bias(const PosePair& pose, const Eigen::Matrix3d& R_target_source,
+                           const JointRegistrar::Params& params) {
+  MotionCovariance turn = MotionCovariance::Zero();
+  turn.topLeftCorner<3, 3>() = R_target_source;
+  turn.bottomRightCorner<3, 3>() = R_target_source;
+  MotionCovariance bias = turn * pose.source_bias * turn.transpose();
+  bias.topLeftCorner<3, 3>().diagonal().array() += params.pose_bias_translation * params.pose_bias_translation;
+  bias.bottomRightCorner<3, 3>().diagonal().array() += params.pose_bias_rotation * params.pose_bias_rotation;
+  return bias;
+}
+
 }  // namespace
 
 void JointRegistrar::Params::validate() const {
@@ -190,9 +203,12 @@ JointRegistrar::Result JointRegistrar::estimate(const std::vector<PosePair>& pos
 
   result.uncertainty = uncertainty_of(poses, use, current.T);
   std::vector<std::vector<Eigen::Vector3d>> pose_sources;
-  for (int p : use) pose_sources.emplace_back(poses[p].source.begin(), poses[p].source.end());
-  add_shared_group_error(result.uncertainty, current.T, pose_sources, params_.pose_bias_translation,
-                         params_.pose_bias_rotation);
+  std::vector<MotionCovariance> pose_biases;
+  for (int p : use) {
+    pose_sources.emplace_back(poses[p].source.begin(), poses[p].source.end());
+    pose_biases.push_back(pose_bias(poses[p], current.T.linear(), params_));
+  }
+  add_shared_group_error(result.uncertainty, current.T, pose_sources, pose_biases);
   if (result.uncertainty.valid && result.uncertainty.condition <= params_.max_condition)
     result.uncertainty.suggestion.clear();  // well conditioned: nothing to suggest
 
