@@ -125,6 +125,12 @@ class L2S_EXPORT Calibrator {
     Registrar::Params registrar;
     PoseGrouper::Params poses;  ///< how frames are grouped into board poses (the board static within each)
     JointRegistrar::Params joint;  ///< the fit over all poses: outlying poses, when to suggest another
+    /// [px] The error of the image distance a camera measures a board
+    /// pose's range by (stereo: the rims' disparity; mono: the markers'
+    /// spread), shared by every frame of the pose: its depth errs by this
+    /// times range^2 / (fx B) and the board tilts by that over the hole
+    /// pattern. Widens the result's uncertainty with range, >= 0.
+    double camera_range_bias_px = 0.02;
     /// With two or more used poses, refine the centre fit with each pose's
     /// board planes (the lidar's from all its board returns, the camera's
     /// through its centres): a ring lidar's centres carry a bias per pose
@@ -136,6 +142,13 @@ class L2S_EXPORT Calibrator {
     int check_frames = 8;      ///< frames kept for the check, evenly spread over the frames used (between this and twice this are held; while fewer used frames came, frames without the board on both sides fill up to as many again), >= 1
     SceneObserver::Params observer;   ///< what is kept of each checked frame
     CalibrationCheck::Params check;   ///< scoring and verdict thresholds
+    /// A checked result is at best suspect when its own 95 % bounds
+    /// (joint.uncertainty; the norm of the three translations, of the three
+    /// rotations) exceed these: the scene may agree with it, yet the data
+    /// pin it no better (a far board with little stereo depth resolution
+    /// turns the camera about the board unseen), > 0.
+    double trusted_bound_translation = 0.1;   ///< [m]
+    double trusted_bound_rotation_deg = 2.0;  ///< [deg]
 
     /// "default" (the most accurate) or "paper" (the 2017 method's values);
     /// throws ParamError for any other name.

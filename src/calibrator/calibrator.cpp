@@ -106,6 +106,15 @@ struct Calibrator::Impl {
     return report;
   }
 
+  // How the camera's board poses err with range: stereo measures it by
+  // disparity over fx B (the rectified pair's), a mono camera by the
+  // apparent size of the board's markers, spread over about its width.
+  detail::SourceRange camera_range() const {
+    const double base = mono ? cameras.left.fx() * target.board_width
+                             : -camera_setup->cameras.right.projection_matrix(0, 3);
+    return {base, params.camera_range_bias_px};
+  }
+
   // Clusters the centres and registers them: the result before its check.
   Result registered() const {
     Result result;
@@ -138,7 +147,7 @@ struct Calibrator::Impl {
       return result;
     }
 
-    if (!detail::register_poses(frames, late_lidar, params, result)) return result;
+    if (!detail::register_poses(frames, late_lidar, params, camera_range(), result)) return result;
     result.found = true;
     return result;
   }
@@ -304,7 +313,7 @@ Calibrator::Result Calibrator::result() const {
     result.quality.reasons = {"no transform to check: " + result.reason};
   else if (impl.params.check_result)
     detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params,
-                         impl.mono != nullptr);
+                         impl.camera_range(), impl.mono != nullptr);
   return result;
 }
 

@@ -90,6 +90,9 @@ void Calibrator::Params::validate() const {
   validate_field("joint", [&] { joint.validate(); });
   if (ring_free_frames < 1) throw ParamError("ring_free_frames", "must be >= 1");
   if (check_frames < 1) throw ParamError("check_frames", "must be >= 1");
+  if (!(camera_range_bias_px >= 0.0)) throw ParamError("camera_range_bias_px", "must be >= 0 px");
+  if (!(trusted_bound_translation > 0.0)) throw ParamError("trusted_bound_translation", "must be > 0 m");
+  if (!(trusted_bound_rotation_deg > 0.0)) throw ParamError("trusted_bound_rotation_deg", "must be > 0 deg");
   validate_field("observer", [&] { observer.validate(); });
   validate_field("check", [&] { check.validate(); });
 }

@@ -306,12 +306,15 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("registrar", [&](V& s) { visit(s, p.registrar); });
   v.section("poses", [&](V& s) { visit(s, p.poses); });
   v.section("joint", [&](V& s) { visit(s, p.joint); });
+  v.field("camera_range_bias_px", p.camera_range_bias_px);
   v.field("refine_with_board_planes", p.refine_with_board_planes);
   v.field("parallel_branches", p.parallel_branches);
   v.field("check_result", p.check_result);
   v.field("check_frames", p.check_frames);
   v.section("observer", [&](V& s) { visit(s, p.observer); });
   v.section("check", [&](V& s) { visit(s, p.check); });
+  v.field("trusted_bound_translation", p.trusted_bound_translation);
+  v.field("trusted_bound_rotation_deg", p.trusted_bound_rotation_deg);
 }
 
 }  // namespace l2s::detail

@@ -10,6 +10,16 @@
 
 namespace l2s::detail {
 
+/// How the source stream's board poses err with range (a camera's): their
+/// range comes from an image distance of base / range [px] (a disparity,
+/// base = fx B; for a mono camera the marker span, base = fx times its
+/// width), measured to bias_px in every frame of a pose alike. base 0: not
+/// modelled (a lidar).
+struct SourceRange {
+  double base = 0.0;     ///< [m px]
+  double bias_px = 0.0;  ///< [px] Calibrator::Params::camera_range_bias_px
+};
+
 /// Groups `frames` into board poses, clusters each pose's centres per sensor
 /// and registers all usable poses jointly. `late_lidar`: a lidar detection not
 /// in any frame report yet (a ring-free window detected as it stands), counted
@@ -17,7 +27,7 @@ namespace l2s::detail {
 /// registration, joint and T_lidar_camera; false with result.reason set when
 /// no transform is found.
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
-                    const Calibrator::Params& params, Calibrator::Result& result);
+                    const Calibrator::Params& params, const SourceRange& camera_range, Calibrator::Result& result);
 
 /// What the two streams are called in reasons ("lidar", "camera").
 using StreamNames = std::array<std::string, 2>;
@@ -34,12 +44,12 @@ using StreamNames = std::array<std::string, 2>;
 bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
                            const Calibrator::Params& params, Calibrator::Result& result,
                            const std::vector<std::optional<Plane>>& lidar_planes = {},
-                           const std::vector<bool>& coarse_source = {});
+                           const std::vector<bool>& coarse_source = {}, const SourceRange& source_range = {});
 
 /// The joint fit of result.poses again with every pose's camera centres
 /// relabelled by `permutation` (the labels the scene prefers); updates the
 /// centroids, registration, joint and T. False when the fit fails.
 bool refit_relabelled(Calibrator::Result& result, const HolePermutation& permutation,
-                      const Calibrator::Params& params);
+                      const Calibrator::Params& params, const SourceRange& source_range);
 
 }  // namespace l2s::detail

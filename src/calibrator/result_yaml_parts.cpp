@@ -101,6 +101,10 @@ void emit_uncertainty(YAML::Emitter& out, const JointRegistrar::Result& joint, i
   out << YAML::Key << "uncertainty" << YAML::Value << YAML::BeginMap;
   emit_dofs(out, "sigma", u.sigma);
   emit_dofs(out, "bound_95", u.bound_95);
+  // One number each, what the verdict's trusted bounds are compared with.
+  out << YAML::Key << "bound_95_translation_m" << YAML::Value << format_number(translation_bound_95(u));
+  out << YAML::Key << "bound_95_rotation_deg" << YAML::Value
+      << format_number(rotation_bound_95(u, joint.T_target_source) * 180.0 / M_PI);
   if (poses_used >= 3) emit_dofs(out, "sigma_between_poses", u.sigma_between_poses);
   if (*std::max_element(u.sigma_shared.begin(), u.sigma_shared.end()) > 0.0)
     emit_dofs(out, "sigma_shared", u.sigma_shared);
