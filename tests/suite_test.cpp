@@ -146,6 +146,14 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   row.verdict = "suspect";
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).scene, row.scene);
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).verdict, "suspect");
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).covered, -1);
+  row.covered = 5;
+  const std::string line = to_csv_line(row);
+  EXPECT_EQ(parse_csv_line(line).covered, 5);
+  // A results.csv of an earlier release has no covered column: it still reads.
+  const SuiteRow legacy = parse_csv_line(line.substr(0, line.rfind(',')));
+  EXPECT_EQ(legacy.verdict, "suspect");
+  EXPECT_EQ(legacy.covered, -1);
 
   const SuiteRow good = parse_csv_line(to_csv_line(sample_row()));
   EXPECT_EQ(good.e_t, sample_row().e_t) << "errors are written exactly";

@@ -19,8 +19,12 @@ constexpr int kMostPoses = 5;
 /// Frames of the recording with the first `poses` poses.
 constexpr int pose_recording_frames(int poses) { return poses * kPoseFrames + (poses - 1) * kMovingFrames; }
 
-/// A cell's row from its calibration: success, reason, frames, verdict, and
-/// the errors against T_true when a transform was found.
+/// DoFs (of six) whose true error lies within the result's stated 95 %
+/// bound; -1 when it has no valid uncertainty.
+int covered_dofs(const Calibrator::Result& result, const Eigen::Isometry3d& T_true);
+
+/// A cell's row from its calibration: success, reason, frames, verdict, the
+/// errors against T_true when a transform was found, and their coverage.
 SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const Eigen::Isometry3d& T_true,
                   double wall_s, const std::string& scene);
 

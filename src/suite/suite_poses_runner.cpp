@@ -27,18 +27,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// DoFs whose true error lies within the stated 95 % bound, of six.
-int covered_dofs(const Calibrator::Result& result, const Eigen::Isometry3d& T_true) {
-  const FitUncertainty& u = result.joint.uncertainty;
-  if (!u.valid) return 0;
-  const Eigen::Vector3d dt = result.T_lidar_camera.translation() - T_true.translation();
-  const Eigen::Vector3d drpy = roll_pitch_yaw(result.T_lidar_camera.rotation()) - roll_pitch_yaw(T_true.rotation());
-  int covered = 0;
-  for (int k = 0; k < 6; ++k)
-    covered += std::abs(k < 3 ? dt[k] : std::remainder(drpy[k - 3], 2.0 * M_PI)) <= u.bound_95[k];
-  return covered;
-}
-
 SuiteRow evaluate_poses(const SuiteCell& cell, const Calibrator::Result& result, const MultiPoseSimulator& sim,
                         int asked, double seconds) {
   SuiteRow row = evaluate(cell, result, sim.T_lidar_camera(), seconds, "");
@@ -50,7 +38,7 @@ SuiteRow evaluate_poses(const SuiteCell& cell, const Calibrator::Result& result,
   scene << "poses=" << asked << " drawn=" << std::min<std::size_t>(asked, sim.poses().size())
         << " found=" << result.poses.size() << " used=" << result.poses_used() << " moving_in_poses=" << entered;
   if (result.found)
-    scene << " covered=" << covered_dofs(result, sim.T_lidar_camera())
+    scene << " covered=" << std::max(0, row.covered)
           << " valid=" << result.joint.uncertainty.valid;
   row.scene = scene.str();
   return row;

@@ -7,6 +7,7 @@
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
 #include <l2s/metrics.hpp>
+#include <l2s/pose.hpp>
 #include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/simulation.hpp>
 
@@ -23,11 +24,23 @@ namespace l2s::sim {
 
 namespace detail {
 
+int covered_dofs(const Calibrator::Result& result, const Eigen::Isometry3d& T_true) {
+  const FitUncertainty& u = result.joint.uncertainty;
+  if (!result.found || !u.valid) return -1;
+  const Eigen::Vector3d dt = result.T_lidar_camera.translation() - T_true.translation();
+  const Eigen::Vector3d drpy = roll_pitch_yaw(result.T_lidar_camera.rotation()) - roll_pitch_yaw(T_true.rotation());
+  int covered = 0;
+  for (int k = 0; k < 6; ++k)
+    covered += std::abs(k < 3 ? dt[k] : std::remainder(drpy[k - 3], 2.0 * M_PI)) <= u.bound_95[k];
+  return covered;
+}
+
 SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const Eigen::Isometry3d& T_true,
                   double wall_s, const std::string& scene) {
   SuiteRow row = SuiteRow::of(cell);
   row.scene = scene;
   if (result.checked) row.verdict = verdict_name(result.quality.verdict);
+  row.covered = covered_dofs(result, T_true);
   row.frames = result.frames_added;
   row.success = result.found;
   row.reason = result.reason;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -29,20 +30,30 @@ void write_scenes_summary(std::ostringstream& out, const std::vector<const Suite
   out << "One run per randomised scene (`l2s simulate --random-scene SEED` redraws one; the seed is "
          "in results.csv). Errors over the successful runs.\n\n"
       << "| preset | scenes | success | e_t median [mm] | e_t p95 [mm] | e_t max [mm] | e_r median [deg] "
-         "| e_r p95 [deg] | e_r max [deg] |\n"
-      << "|---|---|---|---|---|---|---|---|---|\n";
+         "| e_r p95 [deg] | e_r max [deg] | 95 % bound covers: DoFs / runs |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [preset, preset_rows] : by_preset) {
     std::vector<double> e_t, e_r;
-    for (const SuiteRow* row : preset_rows)
+    int covered_dofs = 0, covered_runs = 0, bounded = 0;
+    for (const SuiteRow* row : preset_rows) {
       if (row->success) {
         e_t.push_back(row->e_t * 1e3);
         e_r.push_back(row->e_r * 180.0 / M_PI);
       }
+      if (row->covered < 0) continue;
+      ++bounded;
+      covered_dofs += row->covered;
+      covered_runs += row->covered == 6;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double dof_share = bounded ? 100.0 * covered_dofs / (6.0 * bounded) : nan;
+    const double run_share = bounded ? 100.0 * covered_runs / bounded : nan;
     const double rate = 100.0 * static_cast<double>(e_t.size()) / static_cast<double>(preset_rows.size());
     out << "| " << preset << " | " << preset_rows.size() << " | " << format("%.0f %%", rate) << " | "
         << format("%.2f", percentile(e_t, 50)) << " | " << format("%.2f", percentile(e_t, 95)) << " | "
         << format("%.2f", percentile(e_t, 100)) << " | " << format("%.3f", percentile(e_r, 50)) << " | "
-        << format("%.3f", percentile(e_r, 95)) << " | " << format("%.3f", percentile(e_r, 100)) << " |\n";
+        << format("%.3f", percentile(e_r, 95)) << " | " << format("%.3f", percentile(e_r, 100)) << " | "
+        << format("%.0f %%", dof_share) << " / " << format("%.0f %%", run_share) << " |\n";
   }
 
   bool header = false;
