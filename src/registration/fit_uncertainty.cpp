@@ -178,7 +178,7 @@ double rotation_bound_95(const FitUncertainty& u, const Eigen::Isometry3d& T_tar
     }
   // d(rotation vector) / d(roll, pitch, yaw), by central differences.
   const Eigen::Vector3d rpy = roll_pitch_yaw(T_target_source.rotation());
-  const auto rotation = [](const Eigen::Vector3d& a) {
+  const auto rotation = [](const Eigen::Vector3d& a) -> Eigen::Matrix3d {  // a copy: linear() views a temporary
     return pose_from_roll_pitch_yaw(a[0], a[1], a[2], Eigen::Vector3d::Zero()).linear();
   };
   constexpr double h = 1e-6;
