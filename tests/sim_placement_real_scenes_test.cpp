@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace l2s::sim {
@@ -59,6 +60,44 @@ TEST(RosettePlacement, ReportsABoardOutsideTheFieldOfView) {
   const PlacementReport report = check_placement(scene, LidarModel::avia(), setting);
   EXPECT_FALSE(report.ok);
   EXPECT_TRUE(mentions(report, "outside the field of view")) << report.summary();
+}
+
+TEST(RosettePlacement, AHoleTheFieldOfViewCutsBeyondItsCentreIsNotInView) {
+  // The board slid right until one hole's centre lies just outside the
+  // Avia's elliptic field of view: returns still pass through that hole and
+  // land around its rim on the scanned side, but less than half of its rim
+  // is in view, which no detector can place.
+  const LidarModel avia = LidarModel::avia();
+  const SensorSetting setting;
+  const Eigen::Isometry3d T_lidar_cambody = setting.T_cambody_lidar().inverse();
+  const auto outermost = [&](const Scene& scene) {
+    double worst = 0.0;
+    for (const Eigen::Vector2d& h : scene.target.hole_centers()) {
+      const Eigen::Vector3d p = T_lidar_cambody * (scene.T_cambody_board * Eigen::Vector3d(h.x(), h.y(), 0.0));
+      const double azimuth = std::atan2(p.y(), p.x()), elevation = std::atan2(p.z(), p.head<2>().norm());
+      worst = std::max(worst, std::hypot(azimuth / avia.rosette.azimuth_half_width,
+                                         elevation / avia.rosette.elevation_max));
+    }
+    return worst;
+  };
+  double lateral = 0.0;
+  while (outermost(make_scene(Target{}, BoardPose{3.0, -lateral, 0.0, 0.2, 0.0, 0.0})) < 1.03) lateral += 0.005;
+  const Scene cut = make_scene(Target{}, BoardPose{3.0, -lateral, 0.0, 0.2, 0.0, 0.0});
+  const PlacementReport report = check_placement(cut, avia, setting);
+  EXPECT_FALSE(report.ok);
+  EXPECT_TRUE(mentions(report, "twelfths of its rim")) << report.summary();
+  const auto& shares = report.rim_in_view;
+  EXPECT_LT(*std::min_element(shares.begin(), shares.end()), 2.0 / 3.0) << report.summary();
+  // The returns counted over the whole hole alone (the rule before) let it pass.
+  PlacementRequirements counts_only;
+  counts_only.min_rim_in_view = 1e-3;
+  // (The camera's image margin is not this test's concern: it looks elsewhere.)
+  EXPECT_FALSE(mentions(check_placement(cut, avia, setting, StereoRig{}, counts_only), "avia: hole"))
+      << report.summary();
+  // The same board well inside the field of view shows every rim all around.
+  const Scene inside = make_scene(Target{}, BoardPose{3.0, -(lateral - 0.6), 0.0, 0.2, 0.0, 0.0});
+  const PlacementReport whole = check_placement(inside, avia, setting);
+  for (int h = 0; h < 4; ++h) EXPECT_GE(whole.rim_in_view[h], 11.0 / 12.0) << whole.summary();
 }
 
 TEST(RosettePlacement, ReportsTooFewReturnsOfAFarBoard) {

@@ -125,6 +125,8 @@ std::string PlacementReport::summary() const {
     four(returns_through_hole);
     s << ", around them ";
     four(returns_around_hole);
+    s << ", rim in view [" << rim_in_view[0] << " " << rim_in_view[1] << " " << rim_in_view[2] << " "
+      << rim_in_view[3] << "]";
   } else {
     s << "rings per hole ";
     four(rings_per_hole);
@@ -139,6 +141,8 @@ PlacementReport check_placement(const Scene& scene, const LidarModel& lidar,
                                 const PlacementRequirements& req) {
   if (!(req.accumulation_time > 0.0 && req.accumulation_time <= 60.0))
     throw ParamError("placement.accumulation_time", "must be in (0, 60] s");
+  if (!(req.min_rim_in_view > 0.0 && req.min_rim_in_view <= 1.0))
+    throw ParamError("placement.min_rim_in_view", "must be in (0, 1]");
   PlacementReport report;
   const RayCaster caster(scene);
   const Eigen::Isometry3d T_cambody_lidar = setting.T_cambody_lidar();

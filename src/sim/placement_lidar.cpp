@@ -216,6 +216,8 @@ void check_lidar_rosette(const RayCaster& caster, const LidarModel& lidar, const
   const double r = target.hole_radius;
   std::array<int, 4>& through = report->returns_through_hole;
   std::array<int, 4>& around = report->returns_around_hole;
+  constexpr int kRimSectors = 12;
+  std::array<std::array<bool, kRimSectors>, 4> rim_sector_seen{};
   for (int i = 0; i < count; ++i) {
     if (!box.contains(azimuth[i], elevation[i])) continue;
     const Eigen::Vector3d dir = T_cambody_lidar.linear() * laser_beam(elevation[i], azimuth[i]).direction;
@@ -230,11 +232,25 @@ void check_lidar_rosette(const RayCaster& caster, const LidarModel& lidar, const
     for (int h = 0; h < 4; ++h) {
       const double dist = (q - holes[h]).norm();
       if (dist < r && in_range && hit.surface != SurfaceId::Board && hit.t > t_plane + kBackgroundDepth) ++through[h];
-      if (dist >= r && dist < r + 0.04 && in_range && hit.surface == SurfaceId::Board && std::abs(hit.t - t_plane) < 0.03)
+      if (dist >= r && dist < r + 0.04 && in_range && hit.surface == SurfaceId::Board &&
+          std::abs(hit.t - t_plane) < 0.03) {
         ++around[h];
+        const Eigen::Vector2d d = q - holes[h];
+        const double turn = (std::atan2(d.y(), d.x()) + M_PI) / (2.0 * M_PI);
+        rim_sector_seen[h][std::min(kRimSectors - 1, static_cast<int>(turn * kRimSectors))] = true;
+      }
     }
   }
   for (int h = 0; h < 4; ++h) {
+    const auto seen = std::count(rim_sector_seen[h].begin(), rim_sector_seen[h].end(), true);
+    report->rim_in_view[h] = static_cast<double>(seen) / kRimSectors;
+    if (report->rim_in_view[h] + 1e-9 < req.min_rim_in_view) {
+      std::ostringstream s;
+      s << lidar.name << ": hole " << kHoleNames[h] << " has board returns around only " << seen << " of "
+        << kRimSectors << " twelfths of its rim (need " << req.min_rim_in_view * kRimSectors
+        << "): the field of view's edge or something in front cuts it";
+      report->failures.push_back(s.str());
+    }
     if (through[h] >= req.min_returns_through_hole && around[h] >= req.min_returns_around_hole) continue;
     std::ostringstream s;
     s << lidar.name << ": hole " << kHoleNames[h] << " has " << through[h] << " returns through it and "

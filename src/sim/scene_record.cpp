@@ -90,6 +90,8 @@ void write_scene_record(const std::string& path, const SimulationConfig& config,
     for (int n : placement.returns_through_hole) out << n;
     out << YAML::EndSeq << YAML::Key << "returns_around_hole" << YAML::Value << YAML::Flow << YAML::BeginSeq;
     for (int n : placement.returns_around_hole) out << n;
+    out << YAML::EndSeq << YAML::Key << "rim_in_view" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double share : placement.rim_in_view) out << share;
     out << YAML::EndSeq;
   }
   out << YAML::Key << "failures" << YAML::Value << YAML::BeginSeq;

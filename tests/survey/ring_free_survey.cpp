@@ -33,27 +33,50 @@ namespace {
 
 using l2s::sim::DatasetSimulator;
 
-/// Where the board's corners sit in the rosette's field of view: 1 = on its
-/// outline, > 1 outside it (Avia: an ellipse; Mid-360: an elevation band).
-std::string corners_in_view(const DatasetSimulator& sim) {
+/// Where a point of the board (in-plane, [m]) sits in the rosette's field of
+/// view: 1 = on its outline, > 1 outside it (Avia: an ellipse; Mid-360: an
+/// elevation band). Azimuth and elevation in degrees go to `az`, `el`.
+double field_of_view_position(const DatasetSimulator& sim, const Eigen::Vector2d& on_board, double* az = nullptr,
+                              double* el = nullptr) {
   const Eigen::Isometry3d T_lidar_board =
       sim.config().setting.T_cambody_lidar().inverse() * sim.board_pose().T_cambody_board();
   const auto& r = sim.lidar_model().rosette;
+  const Eigen::Vector3d p = T_lidar_board * Eigen::Vector3d(on_board.x(), on_board.y(), 0.0);
+  const double azimuth = std::atan2(p.y(), p.x()), elevation = std::atan2(p.z(), p.head<2>().norm());
+  if (az) *az = azimuth * 180.0 / M_PI;
+  if (el) *el = elevation * 180.0 / M_PI;
+  const double de = (elevation - 0.5 * (r.elevation_max + r.elevation_min)) /
+                    (0.5 * (r.elevation_max - r.elevation_min));
+  return r.rotation_rate > 0.0 ? std::abs(de) : std::hypot(azimuth / r.azimuth_half_width, de);
+}
+
+/// The largest field-of-view position of the four hole centres: above 1, a
+/// hole has more than half of its rim outside the field of view.
+double worst_hole_centre_in_view(const DatasetSimulator& sim) {
+  double worst = 0.0;
+  for (const Eigen::Vector2d& h : sim.config().target.hole_centers())
+    worst = std::max(worst, field_of_view_position(sim, h));
+  return worst;
+}
+
+/// The board's corners and hole centres in the field of view, for a failure.
+std::string corners_in_view(const DatasetSimulator& sim) {
   const auto& t = sim.config().target;
   std::string out = "corners (az deg, el deg, fov):";
+  char buffer[64];
   for (const double sx : {-0.5, 0.5})
     for (const double sy : {-0.5, 0.5}) {
-      const Eigen::Vector3d p =
-          T_lidar_board * Eigen::Vector3d(sx * t.board_width, sy * t.board_height, 0.0);
-      const double az = std::atan2(p.y(), p.x()), el = std::atan2(p.z(), p.head<2>().norm());
-      const double de = (el - 0.5 * (r.elevation_max + r.elevation_min)) /
-                        (0.5 * (r.elevation_max - r.elevation_min));
+      double az = 0.0, el = 0.0;
       const double fov =
-          r.rotation_rate > 0.0 ? std::abs(de) : std::hypot(az / r.azimuth_half_width, de);
-      char buffer[64];
-      std::snprintf(buffer, sizeof buffer, " (%.0f %.0f %.2f)", az * 57.2958, el * 57.2958, fov);
+          field_of_view_position(sim, Eigen::Vector2d(sx * t.board_width, sy * t.board_height), &az, &el);
+      std::snprintf(buffer, sizeof buffer, " (%.0f %.0f %.2f)", az, el, fov);
       out += buffer;
     }
+  out += "; hole centres (fov):";
+  for (const Eigen::Vector2d& h : t.hole_centers()) {
+    std::snprintf(buffer, sizeof buffer, " %.2f", field_of_view_position(sim, h));
+    out += buffer;
+  }
   return out;
 }
 
@@ -88,7 +111,7 @@ int main(int argc, char** argv) {
   const int windows = argc > 4 ? std::atoi(argv[4]) : 2;
   const auto params = l2s::Calibrator::Params::preset("default");
   const int n = params.ring_free_frames;
-  int found = 0, total = 0;
+  int found = 0, total = 0, found_in_view = 0, total_in_view = 0;
   std::vector<double> errors;
   for (std::uint64_t seed = first; seed < first + static_cast<std::uint64_t>(count); ++seed) {
     const auto sim = l2s::survey::make_lidar_scene(model, seed, n * windows, 2.0, 5.0);
@@ -97,6 +120,7 @@ int main(int argc, char** argv) {
       continue;
     }
     const auto gt = l2s::survey::lidar_truth(*sim);
+    const bool holes_in_view = worst_hole_centre_in_view(*sim) <= 1.0;
     if (std::getenv("SURVEY_VERBOSE")) {
       const auto& c = sim->config();
       const auto& b = sim->board_pose();
@@ -111,6 +135,7 @@ int main(int argc, char** argv) {
       for (int i = 0; i < n; ++i) sweeps.push_back(sim->sweep(w * n + i));
       const auto t = l2s::inspect_lidar(sweeps, sim->config().target, params);
       ++total;
+      total_in_view += holes_in_view;
       if (const char* dir = std::getenv("SURVEY_PICTURES"))
         l2s::io::write_png(std::string(dir) + "/" + model + "_" + std::to_string(seed) + "_" +
                                std::to_string(w) + ".png",
@@ -132,6 +157,7 @@ int main(int argc, char** argv) {
         continue;
       }
       ++found;
+      found_in_view += holes_in_view;
       double worst = 0.0;
       for (int h = 0; h < 4; ++h) {
         const double e = (t.report.centers[h] - gt[h]).norm();
@@ -147,7 +173,8 @@ int main(int argc, char** argv) {
   }
   std::sort(errors.begin(), errors.end());
   const double median = errors.empty() ? 0.0 : errors[errors.size() / 2];
-  std::printf("%s: found %d of %d windows, median centre error %.1f mm (%zu centres)\n",
-              model.c_str(), found, total, median * 1e3, errors.size());
+  std::printf("%s: found %d of %d windows (%d of %d with every hole centre in the field of view), "
+              "median centre error %.1f mm (%zu centres)\n",
+              model.c_str(), found, total, found_in_view, total_in_view, median * 1e3, errors.size());
   return 0;
 }

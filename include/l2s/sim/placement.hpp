@@ -39,6 +39,12 @@ struct PlacementRequirements {
   double accumulation_time = 2.0;       ///< [s] of frames accumulated, > 0
   int min_returns_through_hole = 30;    ///< returns through each hole onto a surface >= 0.3 m behind it
   int min_returns_around_hole = 60;     ///< board returns within 4 cm outside each hole's rim
+  /// Share of the directions around each hole (twelfths) whose stretch of
+  /// rim has board returns, in (0, 1]. 2/3 puts each hole's centre at least
+  /// half a radius inside the field of view: a hole the field of view cuts
+  /// beyond its centre shows no more than a sliver, which no detector can
+  /// place, and a user aims the board so that it is in view.
+  double min_rim_in_view = 2.0 / 3.0;
 };
 
 /// The verdict for one scene, lidar model and setting.
@@ -51,6 +57,7 @@ struct L2S_SIM_EXPORT PlacementReport {
   bool ring_free = false;                ///< the lidar has no rings: the counts below apply
   std::array<int, 4> returns_through_hole{};  ///< ring-free: within accumulation_time
   std::array<int, 4> returns_around_hole{};   ///< ring-free: board returns around the rim
+  std::array<double, 4> rim_in_view{};        ///< ring-free: share of the rim's directions with returns
   double normal_elevation_camera = 0.0;  ///< [rad]
   double normal_elevation_lidar = 0.0;   ///< [rad]
   std::vector<RingCrossing> crossings;   ///< every ring that reaches a hole
