@@ -81,6 +81,31 @@ TEST(OccupancyEdgeFilter, CompletesHolesCutByTheEdgeOfTheFieldOfView) {
   for (int h = 0; h < 4; ++h) EXPECT_LT((circles.centers[h] - truth[h]).norm(), 0.006) << "hole " << h;
 }
 
+TEST(OccupancyEdgeFilter, SaysWhenTheFieldOfViewCutsTheBoardBeyondHoleCentres) {
+  // The edge of the field of view runs 0.03 m above the lower holes' centres:
+  // little more than a sliver of them is scanned, the pattern has too little
+  // to complete them, and the user is told the board is cut, not only that
+  // holes are missing. The whole board gives no such hint.
+  Scene scene;
+  scene.T_sensor_board = board_pose({3.0, 0.2, 0.0}, 15.0 * kDeg);
+  const double lowest = std::atan2(-0.2 + 0.03, 3.0);
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& p : random_scan(scene, 80000, 0.02, 3))
+    if (std::atan2(p.z(), p.head<2>().norm()) > lowest) points.push_back(p);
+  const auto cut = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
+                                                Eigen::Vector3d::UnitZ(), scene.target);
+  EXPECT_LT(cut.holes, 4);
+  EXPECT_LT(cut.seen_height, scene.target.board_height - scene.target.hole_radius);
+  EXPECT_NE(cut.cut_board_hint(scene.target).find("cuts it"), std::string::npos) << cut.cut_board_hint(scene.target);
+
+  const auto whole_points = random_scan(scene, 80000, 0.02, 3);
+  const auto whole = OccupancyEdgeFilter().filter(whole_points, scene.visible_plane(),
+                                                  board_points(whole_points, scene), Eigen::Vector3d::UnitZ(),
+                                                  scene.target);
+  EXPECT_EQ(whole.holes, 4);
+  EXPECT_EQ(whole.cut_board_hint(scene.target), "");
+}
+
 TEST(OccupancyEdgeFilter, SparseBoardSaysWhy) {
   Scene scene;
   const auto points = random_scan(scene, 400, 0.02, 2);

@@ -43,6 +43,14 @@ class L2S_EXPORT OccupancyEdgeFilter {
     /// Places found deep enough and surrounded by board, and those the hole
     /// pattern predicts that show a rim arc.
     int holes = 0;
+    /// [m] the board points' extent in the plane, along the sensor's
+    /// horizontal and up: less than the board's when the field of view's
+    /// edge (or something in front) cuts it.
+    double seen_width = 0.0, seen_height = 0.0;
+
+    /// When fewer than four holes were found on a board seen cut short: why,
+    /// in words for the user (which size was seen, what to do); else empty.
+    std::string cut_board_hint(const Target& target) const;
   };
 
   // Two constructors rather than `Params params = {}` (see PlaneSegmenter).

@@ -70,6 +70,10 @@ class LidarHypothesisTester {
     if (!attempt.circles.found) {
       hypothesis.stage = "circles";
       hypothesis.reason = attempt.circles.reason;
+      if (ring_free_) {
+        const std::string hint = attempt.occupancy.cut_board_hint(target_);
+        if (!hint.empty()) hypothesis.reason += "; " + hint;
+      }
       return std::nullopt;
     }
     const CloudEvidenceParams evidence{params_.lidar_plane.inlier_threshold, params_.discontinuity.min_discontinuity};

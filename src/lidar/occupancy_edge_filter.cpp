@@ -177,6 +177,22 @@ std::vector<Eigen::Vector2d> with_pattern_holes(std::vector<Eigen::Vector2d> cen
 
 }  // namespace
 
+std::string OccupancyEdgeFilter::Result::cut_board_hint(const Target& target) const {
+  if (holes >= 4 || board_points == 0) return {};
+  // The board's sides as the sensor sees them, whichever way it stands.
+  const double wide = std::max(target.board_width, target.board_height);
+  const double tall = std::min(target.board_width, target.board_height);
+  const double seen_wide = std::max(seen_width, seen_height), seen_tall = std::min(seen_width, seen_height);
+  if (seen_wide >= wide - target.hole_radius && seen_tall >= tall - target.hole_radius) return {};
+  std::ostringstream hint;
+  hint.precision(2);
+  hint << std::fixed << "only " << holes << " of 4 holes in the board's occupancy, and the board is seen over "
+       << seen_width << " x " << seen_height << " m of its " << target.board_width << " x " << target.board_height
+       << " m: the edge of the field of view (or something in front) cuts it; aim the lidar so that the whole "
+          "board is in view";
+  return hint.str();
+}
+
 void OccupancyEdgeFilter::Params::validate() const {
   if (!(cell_factor > 0.0)) throw ParamError("cell_factor", "must be > 0");
   if (!(min_cell > 0.0)) throw ParamError("min_cell", "must be > 0 m");
@@ -212,6 +228,10 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
   uv.reserve(board.size());
   for (const std::size_t i : board) uv.push_back(frame.to_plane(points[i]));
 
+  Eigen::AlignedBox2d seen;
+  for (const Eigen::Vector2d& q : uv) seen.extend(q);
+  result.seen_width = seen.sizes().x();
+  result.seen_height = seen.sizes().y();
   const double spacing = std::sqrt(solid_area / static_cast<double>(board.size()));
   result.cell = std::clamp(params_.cell_factor * spacing, params_.min_cell, params_.max_cell);
   OccupancyGrid grid(uv, result.cell);
