@@ -125,6 +125,18 @@ PlaneSegmenter::Params plane_params(const Calibrator::Params& params, bool ring_
   return plane;
 }
 
+/// The hypotheses on the planes of `t.plane`, most board-like first; the
+/// best verified one, or none. Fills `t.hypotheses` and, when none is
+/// verified, the stages of the first tried.
+std::optional<LidarAttempt> search_board(const LidarCloud& cloud, LidarInspection& t, const Target& target,
+                                         const Calibrator::Params& params) {
+  LidarHypothesisTester tester(cloud, t.ring_free, *t.plane, target, params);
+  std::optional<LidarAttempt> best =
+      search_hypotheses<LidarAttempt>(*t.plane, BoardVerifier(params.lidar_verifier), t.hypotheses, tester);
+  if (!best && tester.first()) keep_stages(t, *tester.first());
+  return best;
+}
+
 /// The branch on `sweep`; `ring_free` when the caller knows the cloud has no
 /// ring structure (a window of ring-free sweeps), else it is classified here.
 BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Calibrator::Params& params,
@@ -151,18 +163,36 @@ BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Cal
     if (!t.ring_free) io::recover_rings(cloud);
   }
 
-  const PlaneSegmenter segmenter(plane_params(params, t.ring_free, target));
-  const auto& planes = t.plane.emplace(segmenter.segment(cloud.points, target));
-  if (!planes.found) return fail(report, "plane", planes.reason);
-
-  LidarHypothesisTester tester(cloud, t.ring_free, planes, target, params);
-  const std::optional<LidarAttempt> best =
-      search_hypotheses<LidarAttempt>(planes, BoardVerifier(params.lidar_verifier), t.hypotheses, tester);
+  const PlaneSegmenter::Params plane_search = plane_params(params, t.ring_free, target);
+  t.plane = PlaneSegmenter(plane_search).segment(cloud.points, target);
+  if (!t.plane->found) return fail(report, "plane", t.plane->reason);
+  std::optional<LidarAttempt> best = search_board(cloud, t, target, params);
+  std::string second_look;
+  if (!best && t.ring_free) {
+    // Seconds of a dense scan cover the floor: where the board's plane meets
+    // it, a strip of floor returns lies within the plane's inlier distance
+    // and joins the board through its stand into a patch larger than the
+    // board. A second look without level surfaces (as for a stereo cloud)
+    // sees the board on its own; its draws differ, so a board the first
+    // look's candidates missed among many walls gets another chance.
+    LidarInspection again;
+    again.ring_free = true;
+    PlaneSegmenter::Params without_level = plane_search;
+    without_level.remove_level_planes = std::max(without_level.remove_level_planes, 2);
+    again.plane = PlaneSegmenter(without_level).segment(cloud.points, target);
+    if (again.plane->found) best = search_board(cloud, again, target, params);
+    if (best) {
+      t.plane = std::move(again.plane);
+      t.hypotheses = std::move(again.hypotheses);
+    } else if (!again.hypotheses.empty()) {
+      second_look = "; again without level surfaces: " + describe_failed_search(again.hypotheses);
+    }
+  }
+  const PlaneSegmenter::Result& planes = *t.plane;
   report.hypotheses = static_cast<int>(t.hypotheses.size());
   if (!best) {
-    if (tester.first()) keep_stages(t, *tester.first());
     report.plane_inliers = planes.inliers.size();
-    return fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
+    return fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses) + second_look);
   }
   keep_stages(t, *best);
   report.plane_inliers = planes.candidates[best->candidate].inliers.size();

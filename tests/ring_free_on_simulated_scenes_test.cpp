@@ -1,0 +1,56 @@
+// The ring-free (rosette) lidar branch on the simulator's scenes, with the
+// quirks of real units and what stands around a real board: the accumulated
+// window of a static board goes through the branch as Calibrator::add runs it
+// (inspect_lidar) and must give the four hole centres.
+#include <l2s/calibrator.hpp>
+#include <l2s/frame_inspector.hpp>
+#include <l2s/sim/simulation.hpp>
+
+#include "survey/lidar_survey_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace l2s {
+namespace {
+
+/// The window `window` (of ring_free_frames sweeps) of the ring-free survey's
+/// scene `seed`: the board 2-5 m away, on its stand, with clutter and quirks.
+LidarInspection inspect_window(const std::string& model, std::uint64_t seed, int window, HoleCenters* truth) {
+  const auto params = Calibrator::Params::preset("default");
+  const int n = params.ring_free_frames;
+  const auto simulator = survey::make_lidar_scene(model, seed, n * (window + 1), 2.0, 5.0);
+  if (!simulator) throw Error("no scene for seed " + std::to_string(seed));
+  *truth = survey::lidar_truth(*simulator);
+  std::vector<LidarCloud> sweeps;
+  for (int i = 0; i < n; ++i) sweeps.push_back(simulator->sweep(window * n + i));
+  return inspect_lidar(sweeps, simulator->config().target, params);
+}
+
+double worst_centre_error(const HoleCenters& found, const HoleCenters& truth) {
+  double worst = 0.0;
+  for (int h = 0; h < 4; ++h) worst = std::max(worst, (found[h] - truth[h]).norm());
+  return worst;
+}
+
+TEST(RingFreeOnSimulatedScenes, ABoardOnAStandAboveADenseFloorIsItsOwnPatch) {
+  // Two seconds of an Avia cover the floor under the board densely. Where the
+  // board's plane meets the floor, a strip of floor returns lies within the
+  // plane's inlier distance and joined the board through its stand into a
+  // 2.9 x 1.2 m patch, "larger than the board": the board was never tried.
+  // Level surfaces are now taken out before the board is looked for, as in
+  // the dense stereo cloud.
+  for (const std::uint64_t seed : {1, 128}) {
+    HoleCenters truth;
+    const LidarInspection in = inspect_window("avia", seed, seed == 1 ? 1 : 0, &truth);
+    EXPECT_TRUE(in.ring_free);
+    ASSERT_TRUE(in.report.found) << "seed " << seed << ": " << in.report.failed_stage << ": " << in.report.reason;
+    EXPECT_LT(worst_centre_error(in.report.centers, truth), 0.008) << "seed " << seed;
+  }
+}
+
+}  // namespace
+}  // namespace l2s
