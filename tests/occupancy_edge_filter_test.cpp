@@ -115,6 +115,23 @@ TEST(OccupancyEdgeFilter, SparseBoardSaysWhy) {
   EXPECT_FALSE(result.reason.empty());
 }
 
+TEST(OccupancyEdgeFilter, ABoardScannedTooBrieflySaysToAccumulateLonger) {
+  // A fifth of a second of a Mid-360 leaves a few hundred points on the
+  // board: gaps between them as wide as the holes. The reason says so and
+  // how much longer to scan, rather than only that no hole was found.
+  Scene scene;
+  const auto points = random_scan(scene, 400, 0.02, 4);
+  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
+                                                   Eigen::Vector3d::UnitZ(), scene.target);
+  EXPECT_FALSE(result.found);
+  EXPECT_NE(result.reason.find("accumulate at least"), std::string::npos) << result.reason;
+  // A densely scanned board never gets that advice.
+  const auto dense = random_scan(scene, 60000, 0.02, 4);
+  const auto found = OccupancyEdgeFilter().filter(dense, scene.visible_plane(), board_points(dense, scene),
+                                                  Eigen::Vector3d::UnitZ(), scene.target);
+  EXPECT_EQ(found.reason.find("accumulate at least"), std::string::npos) << found.reason;
+}
+
 TEST(OccupancyEdgeFilter, RejectsInvalidParamsNamingTheField) {
   OccupancyEdgeFilter::Params params;
   params.max_cell = 0.001;

@@ -220,7 +220,8 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
   const double hole_area = M_PI * target.hole_radius * target.hole_radius;
   const double solid_area = target.board_width * target.board_height - 4.0 * hole_area;
   if (board.size() < 50) {
-    result.reason = "only " + std::to_string(board.size()) + " board points: too sparse to see holes";
+    result.reason = "only " + std::to_string(board.size()) +
+                    " board points: too sparse to see holes (accumulate more sweeps of the static board)";
     return result;
   }
   const auto frame = detail::PlaneFrame::make(plane, up, detail::centroid(points, board));
@@ -253,6 +254,16 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
     std::ostringstream reason;
     reason << "no hole in the board's occupancy: " << result.board_points << " board points, cell "
            << result.cell * 1e3 << " mm, no place a hole's depth away from board points and surrounded by them";
+    // Points farther apart than the coarsest cell leave gaps as wide as the
+    // holes: the board was not scanned long enough, which the user can mend.
+    const double widest_spacing = params_.max_cell / params_.cell_factor;
+    if (spacing > widest_spacing) {
+      const double more = std::pow(spacing / widest_spacing, 2);
+      reason.precision(1);
+      reason << std::fixed << " (the board's points are " << spacing * 1e3 << " mm apart on average, too sparse for "
+             << "holes of radius " << target.hole_radius * 1e3 << " mm: accumulate at least " << more
+             << " times as many sweeps of the static board)";
+    }
     result.reason = reason.str();
   }
   return result;
