@@ -42,6 +42,13 @@ std::vector<std::size_t> board_points(const std::vector<Eigen::Vector3d>& points
   return inliers;
 }
 
+/// The filter with default params on `points`, the board's points taken as
+/// those on the scene's visible plane.
+OccupancyEdgeFilter::Result filter_board(const std::vector<Eigen::Vector3d>& points, const Scene& scene) {
+  return OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
+                                      Eigen::Vector3d::UnitZ(), scene.target);
+}
+
 TEST(OccupancyEdgeFilter, FindsTheFourRimsOfADenseBoard) {
   Scene scene;
   scene.T_sensor_board = board_pose({3.5, 0.3, 0.1}, 20.0 * kDeg, 5.0 * kDeg);
@@ -70,8 +77,7 @@ TEST(OccupancyEdgeFilter, CompletesHolesCutByTheEdgeOfTheFieldOfView) {
   std::vector<Eigen::Vector3d> points;
   for (const Eigen::Vector3d& p : random_scan(scene, 80000, 0.02, 3))
     if (std::atan2(p.z(), p.head<2>().norm()) > lowest) points.push_back(p);
-  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
-                                                   Eigen::Vector3d::UnitZ(), scene.target);
+  const auto result = filter_board(points, scene);
   ASSERT_TRUE(result.found) << result.reason;
   EXPECT_EQ(result.holes, 4);
   const auto circles = CircleFinder().find(result.edges, scene.visible_plane(), Eigen::Vector3d::UnitZ(),
@@ -92,16 +98,13 @@ TEST(OccupancyEdgeFilter, SaysWhenTheFieldOfViewCutsTheBoardBeyondHoleCentres) {
   std::vector<Eigen::Vector3d> points;
   for (const Eigen::Vector3d& p : random_scan(scene, 80000, 0.02, 3))
     if (std::atan2(p.z(), p.head<2>().norm()) > lowest) points.push_back(p);
-  const auto cut = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
-                                                Eigen::Vector3d::UnitZ(), scene.target);
+  const auto cut = filter_board(points, scene);
   EXPECT_LT(cut.holes, 4);
   EXPECT_LT(cut.seen_height, scene.target.board_height - scene.target.hole_radius);
   EXPECT_NE(cut.cut_board_hint(scene.target).find("cuts it"), std::string::npos) << cut.cut_board_hint(scene.target);
 
   const auto whole_points = random_scan(scene, 80000, 0.02, 3);
-  const auto whole = OccupancyEdgeFilter().filter(whole_points, scene.visible_plane(),
-                                                  board_points(whole_points, scene), Eigen::Vector3d::UnitZ(),
-                                                  scene.target);
+  const auto whole = filter_board(whole_points, scene);
   EXPECT_EQ(whole.holes, 4);
   EXPECT_EQ(whole.cut_board_hint(scene.target), "");
 }
@@ -109,8 +112,7 @@ TEST(OccupancyEdgeFilter, SaysWhenTheFieldOfViewCutsTheBoardBeyondHoleCentres) {
 TEST(OccupancyEdgeFilter, SparseBoardSaysWhy) {
   Scene scene;
   const auto points = random_scan(scene, 400, 0.02, 2);
-  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
-                                                   Eigen::Vector3d::UnitZ(), scene.target);
+  const auto result = filter_board(points, scene);
   EXPECT_FALSE(result.found);
   EXPECT_FALSE(result.reason.empty());
 }
@@ -121,14 +123,12 @@ TEST(OccupancyEdgeFilter, ABoardScannedTooBrieflySaysToAccumulateLonger) {
   // how much longer to scan, rather than only that no hole was found.
   Scene scene;
   const auto points = random_scan(scene, 400, 0.02, 4);
-  const auto result = OccupancyEdgeFilter().filter(points, scene.visible_plane(), board_points(points, scene),
-                                                   Eigen::Vector3d::UnitZ(), scene.target);
+  const auto result = filter_board(points, scene);
   EXPECT_FALSE(result.found);
   EXPECT_NE(result.reason.find("accumulate at least"), std::string::npos) << result.reason;
   // A densely scanned board never gets that advice.
   const auto dense = random_scan(scene, 60000, 0.02, 4);
-  const auto found = OccupancyEdgeFilter().filter(dense, scene.visible_plane(), board_points(dense, scene),
-                                                  Eigen::Vector3d::UnitZ(), scene.target);
+  const auto found = filter_board(dense, scene);
   EXPECT_EQ(found.reason.find("accumulate at least"), std::string::npos) << found.reason;
 }
 
