@@ -75,8 +75,7 @@ TEST(RosettePlacement, AHoleTheFieldOfViewCutsBeyondItsCentreIsNotInView) {
     for (const Eigen::Vector2d& h : scene.target.hole_centers()) {
       const Eigen::Vector3d p = T_lidar_cambody * (scene.T_cambody_board * Eigen::Vector3d(h.x(), h.y(), 0.0));
       const double azimuth = std::atan2(p.y(), p.x()), elevation = std::atan2(p.z(), p.head<2>().norm());
-      worst = std::max(worst, std::hypot(azimuth / avia.rosette.azimuth_half_width,
-                                         elevation / avia.rosette.elevation_max));
+      worst = std::max(worst, avia.rosette.field_of_view_position(azimuth, elevation));
     }
     return worst;
   };

@@ -64,6 +64,12 @@ int RosetteScan::shots_per_frame() const {
   return static_cast<int>(std::lround(point_rate * frame_period));
 }
 
+double RosetteScan::field_of_view_position(double azimuth, double elevation) const {
+  const double from_middle =
+      std::abs(elevation - 0.5 * (elevation_max + elevation_min)) / (0.5 * (elevation_max - elevation_min));
+  return rotation_rate > 0.0 ? from_middle : std::hypot(azimuth / azimuth_half_width, from_middle);
+}
+
 int LidarModel::azimuth_count() const {
   return static_cast<int>(std::lround(2.0 * kPi / azimuth_step));
 }

@@ -60,12 +60,10 @@ RosetteExpectation expect_rosette(const LidarModel& lidar, const Eigen::Vector3d
   const double azimuth = std::atan2(c.y(), c.x());
   const double elevation = std::atan2(c.z(), std::hypot(c.x(), c.y()));
   const bool turning = r.rotation_rate > 0.0;
-  // A fixed head's field of view is an ellipse in azimuth and elevation.
-  const double half_span = 0.5 * (r.elevation_max - r.elevation_min);
-  const double from_middle = std::abs(elevation - 0.5 * (r.elevation_max + r.elevation_min)) + alpha;
-  const bool in_view = (turning ? from_middle < half_span
-                                : std::hypot((std::abs(azimuth) + alpha) / r.azimuth_half_width,
-                                             from_middle / half_span) < 1.0) &&
+  // The hole's disc reaches alpha farther out in azimuth and in elevation.
+  const double middle = 0.5 * (r.elevation_max + r.elevation_min);
+  const double far_elevation = middle + std::abs(elevation - middle) + alpha;
+  const bool in_view = r.field_of_view_position(std::abs(azimuth) + alpha, far_elevation) < 1.0 &&
                        range > lidar.min_range && range < lidar.max_range;
   if (!in_view) return {};
   const double span = r.elevation_max - r.elevation_min;

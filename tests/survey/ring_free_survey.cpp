@@ -40,14 +40,11 @@ double field_of_view_position(const DatasetSimulator& sim, const Eigen::Vector2d
                               double* el = nullptr) {
   const Eigen::Isometry3d T_lidar_board =
       sim.config().setting.T_cambody_lidar().inverse() * sim.board_pose().T_cambody_board();
-  const auto& r = sim.lidar_model().rosette;
   const Eigen::Vector3d p = T_lidar_board * Eigen::Vector3d(on_board.x(), on_board.y(), 0.0);
   const double azimuth = std::atan2(p.y(), p.x()), elevation = std::atan2(p.z(), p.head<2>().norm());
   if (az) *az = azimuth * 180.0 / M_PI;
   if (el) *el = elevation * 180.0 / M_PI;
-  const double de = (elevation - 0.5 * (r.elevation_max + r.elevation_min)) /
-                    (0.5 * (r.elevation_max - r.elevation_min));
-  return r.rotation_rate > 0.0 ? std::abs(de) : std::hypot(azimuth / r.azimuth_half_width, de);
+  return sim.lidar_model().rosette.field_of_view_position(azimuth, elevation);
 }
 
 /// The largest field-of-view position of the four hole centres: above 1, a

@@ -51,6 +51,11 @@ struct L2S_SIM_EXPORT RosetteScan {
 
   /// Firings in one frame: round(point_rate * frame_period).
   int shots_per_frame() const;
+  /// Where a direction ([rad], sensor frame) sits in the field of view: 1 on
+  /// its outline, below 1 inside, above 1 outside. A fixed head's field of
+  /// view is an ellipse in azimuth and elevation; a turning head's is the
+  /// band between its elevations, whatever the azimuth.
+  double field_of_view_position(double azimuth, double elevation) const;
 };
 
 /// A lidar type: its scan pattern, beam table or rosette, range limits,
