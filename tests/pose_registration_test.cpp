@@ -37,7 +37,8 @@ std::vector<FrameReport> static_board_frames(int count, int camera_frames, int l
 TEST(PoseRegistration, ARingFreeWindowJoinsThePoseOfItsFrames) {
   const auto frames = static_board_frames(20, 20, 19);
   Calibrator::Result result;
-  ASSERT_TRUE(detail::register_poses(frames, std::nullopt, Calibrator::Params(), {}, result)) << result.reason;
+  ASSERT_TRUE(detail::register_poses(frames, std::nullopt, Target{}, Calibrator::Params(), {}, result))
+      << result.reason;
   ASSERT_EQ(result.poses_used(), 1);
   EXPECT_LT((result.T_lidar_camera.translation() - Eigen::Vector3d(-0.1, -0.2, 0.05)).norm(), 1e-9);
 }
@@ -47,7 +48,8 @@ TEST(PoseRegistration, AWindowDetectedAfterTheCameraLostTheBoardJoinsTheNearestP
   // late (result() closes the window) and lie past the camera's frames.
   const auto frames = static_board_frames(20, 14, -1);
   Calibrator::Result result;
-  ASSERT_TRUE(detail::register_poses(frames, board_centres(Eigen::Vector3d::Zero()), Calibrator::Params(), {}, result))
+  ASSERT_TRUE(detail::register_poses(frames, board_centres(Eigen::Vector3d::Zero()), Target{}, Calibrator::Params(),
+                                     {}, result))
       << result.reason;
   EXPECT_EQ(result.poses_used(), 1);
 }
@@ -87,7 +89,7 @@ TEST(PoseRegistration, BoardPlanesHoldTheFitAgainstPerPoseCentreBiases) {
     Calibrator::Params params;
     params.refine_with_board_planes = planes;
     Calibrator::Result result;
-    EXPECT_TRUE(detail::register_poses(frames, std::nullopt, params, {}, result)) << result.reason;
+    EXPECT_TRUE(detail::register_poses(frames, std::nullopt, Target{}, params, {}, result)) << result.reason;
     EXPECT_EQ(result.poses_used(), 3);
     return Eigen::AngleAxisd(result.T_lidar_camera.linear().transpose() * T_lidar_camera.linear()).angle() * 180 / M_PI;
   };
@@ -118,15 +120,17 @@ TEST(PoseRegistration, CoarseCameraCentresAreLeftOutOfAPoseWithEnoughRefinedOnes
   };
   const Eigen::Vector3d truth(-0.1, -0.2, 0.05);
   Calibrator::Result three;
-  ASSERT_TRUE(detail::register_poses(frames_with(3), std::nullopt, Calibrator::Params(), {}, three)) << three.reason;
+  ASSERT_TRUE(detail::register_poses(frames_with(3), std::nullopt, Target{}, Calibrator::Params(), {}, three))
+      << three.reason;
   EXPECT_LT((three.T_lidar_camera.translation() - truth).norm(), 1e-9);
   EXPECT_EQ(three.poses[0].camera_centroids.frames, 3);
   Calibrator::Result two;
-  ASSERT_TRUE(detail::register_poses(frames_with(2), std::nullopt, Calibrator::Params(), {}, two)) << two.reason;
+  ASSERT_TRUE(detail::register_poses(frames_with(2), std::nullopt, Target{}, Calibrator::Params(), {}, two))
+      << two.reason;
   EXPECT_EQ(two.poses[0].camera_centroids.frames, 30);
   Calibrator::Params paper = Calibrator::Params::preset("paper");  // no rim refinement: nothing is coarse
   Calibrator::Result unrefined;
-  ASSERT_TRUE(detail::register_poses(frames_with(3), std::nullopt, paper, {}, unrefined)) << unrefined.reason;
+  ASSERT_TRUE(detail::register_poses(frames_with(3), std::nullopt, Target{}, paper, {}, unrefined)) << unrefined.reason;
   EXPECT_EQ(unrefined.poses[0].camera_centroids.frames, 30);
 }
 
@@ -148,7 +152,7 @@ TEST(PoseRegistration, TheCamerasRangeErrorWidensTheUncertaintyWithTheSquareOfTh
       f.lidar.centers = f.camera.centers = board_centres(Eigen::Vector3d(distance - 3.0, 0.0, 0.0));
     }
     Calibrator::Result result;
-    EXPECT_TRUE(detail::register_poses(frames, std::nullopt, params, r, result)) << result.reason;
+    EXPECT_TRUE(detail::register_poses(frames, std::nullopt, Target{}, params, r, result)) << result.reason;
     EXPECT_TRUE(result.joint.uncertainty.valid);
     return result.joint.uncertainty.bound_95;
   };

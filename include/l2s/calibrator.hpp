@@ -60,6 +60,10 @@ struct BranchReport {
   /// the sensor), valid when found; it rests on every board return, far more
   /// than the holes' edges do.
   std::optional<Plane> board_plane;
+  /// Ring lidars: where its rings crossed the hole rims (sensor frame, on
+  /// board_plane), one per hole edge; a pose's crossings pin its holes
+  /// more sharply than the frames' centres do (Params::fit_lidar_rim_crossings).
+  std::vector<RimCrossing> rim_crossings;
   double milliseconds = 0.0;      ///< [ms] wall time of the branch
   /// What the calibration check needs of the pair: set by
   /// Calibrator::camera_branch() (so add(lidar, camera) can check), kept by
@@ -88,6 +92,9 @@ struct PoseReport {
   std::string reason;    ///< why not, when !used (centres do not cluster, rejected as an outlier)
   double rms = 0.0;      ///< [m] residual rms of its centres under the result (NaN when they did not cluster)
   std::optional<Plane> lidar_plane;  ///< mean board plane of its lidar detections (normal towards the lidar)
+  /// Its lidar centres are the pattern fitted to its rings' rim crossings
+  /// (Params::fit_lidar_rim_crossings), not the clustered frames' centres.
+  bool lidar_rims_fitted = false;
 };
 
 /// The facade: one per rig and calibration run (see thread safety above).
@@ -136,6 +143,10 @@ class L2S_EXPORT Calibrator {
     /// through its centres): a ring lidar's centres carry a bias per pose
     /// from where its rings cross the holes, its board plane does not.
     bool refine_with_board_planes = true;
+    /// Ring lidars: fit each pose's hole pattern to every place its rings
+    /// crossed a rim, in all the pose's sweeps, keeping each rim inside the
+    /// azimuth step it was crossed in (not only near the step's middle).
+    bool fit_lidar_rim_crossings = true;
     bool parallel_branches = true;  ///< run the lidar and camera branches of a frame concurrently
     // The scene-level check of the result (calibration_check.hpp).
     bool check_result = true;  ///< result() checks the transform against the scene and fills Result::quality

@@ -66,6 +66,7 @@ class L2S_EXPORT DiscontinuityFilter {
     std::vector<Eigen::Vector3d> edges;  ///< [m] edge points, lidar frame
     std::vector<std::uint16_t> rings;    ///< ring of each edge point
     std::vector<std::size_t> sources;    ///< index (into the input cloud) of each edge's board point
+    std::vector<RimCrossing> crossings;  ///< the interval each edge lies in, one per edge (on `plane`)
     Counts counts;
   };
 

@@ -20,6 +20,16 @@ struct Circle {
   double radius = 0.0;                                 ///< [m]
 };
 
+/// Where a lidar ring crossed the rim of a hole: the rim lies somewhere
+/// between the ring's last board return and its next ray (the next return's
+/// azimuth, or one azimuth step on when nothing came back), both cut with the
+/// sweep's board plane. The interval is an azimuth step wide; the midpoint is
+/// the edge point the circle finder fits.
+struct RimCrossing {
+  Eigen::Vector3d board_side = Eigen::Vector3d::Zero();  ///< [m] sensor frame, on the board
+  Eigen::Vector3d hole_side = Eigen::Vector3d::Zero();   ///< [m] sensor frame, over the hole
+};
+
 /// The four hole centres of one board, indexed by enum Hole (TL, TR, BL, BR).
 using HoleCenters = std::array<Eigen::Vector3d, 4>;
 

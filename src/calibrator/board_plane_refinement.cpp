@@ -1,6 +1,7 @@
 #include "calibrator/board_plane_refinement.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 namespace l2s::detail {
 namespace {
@@ -26,6 +27,10 @@ struct Normal {
     H += w * J.transpose() * J;
     g += w * J.transpose() * r;
   }
+  void add(const Jacobian& J, const Eigen::Vector3d& r, const Eigen::Matrix3d& information) {
+    H += J.transpose() * information * J;
+    g += J.transpose() * information * r;
+  }
   void add(const Vector6& J, double r, double sigma) {
     const double w = 1.0 / (sigma * sigma);
     H += w * J * J.transpose();
@@ -43,7 +48,11 @@ Normal normal_equations(const Eigen::Isometry3d& T, const std::vector<BoardPoseO
       const Eigen::Vector3d Rc = R * pose.source[h];
       Jacobian J;
       J << skew(Rc), -Eigen::Matrix3d::Identity();
-      n.add(J, pose.target[h] - Rc - t, weights.centre_sigma);
+      const Eigen::Vector3d sight = R * pose.source[h].normalized();
+      const double across = weights.centre_sigma, along = weights.source_depth_sigma;
+      const Eigen::Matrix3d covariance =
+          across * across * Eigen::Matrix3d::Identity() + along * along * sight * sight.transpose();
+      n.add(J, pose.target[h] - Rc - t, Eigen::Matrix3d(covariance.inverse()));
     }
     const Eigen::Vector3d Rn = R * pose.plane_source.normal();
     Jacobian J;  // r = n_target - R n_source

@@ -34,6 +34,9 @@ struct BoardPlaneWeights {
   double centre_sigma = 0.001;   ///< [m] per coordinate of a clustered centre (its bias, not its noise)
   double normal_sigma = 0.0006;  ///< [rad] of a board normal averaged over a pose
   double offset_sigma = 0.0005;  ///< [m] of a board plane's distance from the sensor
+  /// [m] more for a source centre along the source sensor's line of sight
+  /// to it: a camera measures depth far worse than direction (0: isotropic)
+  double source_depth_sigma = 0.0;
   int iterations = 10;           ///< Gauss-Newton steps (it converges in 2-3 from the centre fit)
 };
 

@@ -147,7 +147,7 @@ struct Calibrator::Impl {
       return result;
     }
 
-    if (!detail::register_poses(frames, late_lidar, params, camera_range(), result)) return result;
+    if (!detail::register_poses(frames, late_lidar, target, params, camera_range(), result)) return result;
     result.found = true;
     return result;
   }

@@ -66,6 +66,7 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   params.accumulator.cluster_tolerance = 0.02;
   params.accumulator.estimator = CenterAccumulator::Estimator::Mean;
   params.refine_with_board_planes = false;  // the paper registers the centres alone
+  params.fit_lidar_rim_crossings = false;   // and clusters the frames' centres
   return params;
 }
 

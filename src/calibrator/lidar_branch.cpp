@@ -202,6 +202,7 @@ BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Cal
   report.found = true;
   report.centers = best->circles.centers;
   report.board_plane = facing_origin(planes.candidates[best->candidate].plane);
+  if (!t.ring_free) report.rim_crossings = best->edges.crossings;
   return report;
 }
 

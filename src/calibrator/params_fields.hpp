@@ -308,6 +308,7 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("joint", [&](V& s) { visit(s, p.joint); });
   v.field("camera_range_bias_px", p.camera_range_bias_px);
   v.field("refine_with_board_planes", p.refine_with_board_planes);
+  v.field("fit_lidar_rim_crossings", p.fit_lidar_rim_crossings);
   v.field("parallel_branches", p.parallel_branches);
   v.field("check_result", p.check_result);
   v.field("check_frames", p.check_frames);

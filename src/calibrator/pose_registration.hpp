@@ -3,6 +3,7 @@
 // centres clustered per pose and sensor -> one joint fit (private).
 
 #include <l2s/calibrator.hpp>
+#include <l2s/target.hpp>
 
 #include <array>
 #include <optional>
@@ -20,14 +21,22 @@ struct SourceRange {
   double bias_px = 0.0;  ///< [px] Calibrator::Params::camera_range_bias_px
 };
 
+/// Stream 0's evidence beyond its centres, per frame (a lidar's).
+struct TargetStreamEvidence {
+  std::vector<std::optional<Plane>> planes;         ///< its board plane, when known
+  std::vector<std::vector<RimCrossing>> crossings;  ///< ring lidars: where its rings crossed the hole rims
+  std::optional<Target> target;                     ///< the board, for fitting a pose's crossings
+};
+
 /// Groups `frames` into board poses, clusters each pose's centres per sensor
 /// and registers all usable poses jointly. `late_lidar`: a lidar detection not
 /// in any frame report yet (a ring-free window detected as it stands), counted
 /// with the last frame. Fills result.poses, moving_frames, the centroids,
 /// registration, joint and T_lidar_camera; false with result.reason set when
-/// no transform is found.
+/// no transform is found. With params.fit_lidar_rim_crossings each pose's
+/// lidar centres are the `target` pattern fitted to its rim crossings.
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
-                    const Calibrator::Params& params, const SourceRange& camera_range, Calibrator::Result& result);
+                    const Target& target, const Calibrator::Params& params, const SourceRange& camera_range, Calibrator::Result& result);
 
 /// What the two streams are called in reasons ("lidar", "camera").
 using StreamNames = std::array<std::string, 2>;
@@ -36,14 +45,15 @@ using StreamNames = std::array<std::string, 2>;
 /// stream s in streams[f][s]; stream 0 is the target of the fit, stream 1 the
 /// source), e.g. two lidars. The result's lidar_* fields hold stream 0, its
 /// camera_* fields stream 1, T_lidar_camera the fitted T_stream0_stream1.
-/// `lidar_planes`: stream 0's board plane per frame, when known; with them
-/// (and params.refine_with_board_planes) the fit is refined with each used
-/// pose's planes, stream 1's through its centres. `coarse_source`: frames
+/// `lidar`: stream 0's board plane per frame, when known; with them (and
+/// params.refine_with_board_planes) the fit is refined with each used pose's
+/// planes, stream 1's through its centres; its rim crossings, when known
+/// (and params.fit_lidar_rim_crossings), give each pose's stream 0 centres. `coarse_source`: frames
 /// whose stream 1 centres are a fallback (the camera's stereo circle fit when
 /// its rim refinement failed); a pose with enough other frames leaves them out.
 bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
                            const Calibrator::Params& params, Calibrator::Result& result,
-                           const std::vector<std::optional<Plane>>& lidar_planes = {},
+                           const TargetStreamEvidence& lidar = {},
                            const std::vector<bool>& coarse_source = {}, const SourceRange& source_range = {});
 
 /// The joint fit of result.poses again with every pose's camera centres

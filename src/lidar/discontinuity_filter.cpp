@@ -315,15 +315,15 @@ DiscontinuityFilter::Result DiscontinuityFilter::filter(const LidarCloud& cloud,
     for (const auto& [position, side] : found.edges) {
       const RingPoint& q = ring[position];
       const Eigen::Vector3d& p = cloud.points[q.index];
-      Eigen::Vector3d placed = p;
-      if (params_.placement == EdgePlacement::Midpoint) {
-        // The true edge lies between this ray and the next return's; a missing
-        // return is taken one azimuth step away.
-        const std::size_t j = (position + m + side) % m;
-        const double gap = side > 0 ? ccw(q.azimuth, ring[j].azimuth) : ccw(ring[j].azimuth, q.azimuth);
-        const double half = 0.5 * (gap <= max_gap && m > 1 ? gap : step);
-        placed = ray_on_plane(p, q.azimuth + side * half, plane);
-      }
+      // The true edge lies between this ray and the next return's; a missing
+      // return is taken one azimuth step away.
+      const std::size_t j = (position + m + side) % m;
+      const double gap = side > 0 ? ccw(q.azimuth, ring[j].azimuth) : ccw(ring[j].azimuth, q.azimuth);
+      const double half = 0.5 * (gap <= max_gap && m > 1 ? gap : step);
+      const Eigen::Vector3d placed =
+          params_.placement == EdgePlacement::Midpoint ? ray_on_plane(p, q.azimuth + side * half, plane) : p;
+      result.crossings.push_back(
+          {ray_on_plane(p, q.azimuth, plane), ray_on_plane(p, q.azimuth + 2.0 * side * half, plane)});
       result.edges.push_back(placed);
       result.rings.push_back(ring_id);
       result.sources.push_back(q.index);
