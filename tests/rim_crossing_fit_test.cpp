@@ -73,8 +73,8 @@ TEST(RimCrossingFit, PinsThePatternInsideTheAzimuthSteps) {
   const Target target;
   const FacingBoard board(target, Eigen::Vector2d(0.013, -0.021));
   std::mt19937 rng(5);
-  const std::vector<RimCrossing> crossings = crossings_of(board, target.hole_radius, 10, rng);
-  ASSERT_GT(crossings.size(), 40u);
+  const std::vector<RimCrossing> crossings = crossings_of(board, target.hole_radius, 20, rng);
+  ASSERT_GT(crossings.size(), 80u);
   // Start as a clustered estimate would be: a few millimetres off, turned.
   HoleCenters start;
   const Eigen::AngleAxisd turn(0.3 * kDeg, Eigen::Vector3d::UnitX());
@@ -85,8 +85,9 @@ TEST(RimCrossingFit, PinsThePatternInsideTheAzimuthSteps) {
   const detail::RimCrossingFit fit =
       detail::fit_pattern_to_rim_crossings(start, board.plane, crossings, target, thin_board());
   ASSERT_TRUE(fit.centers) << fit.reason;
-  for (int h = 0; h < 4; ++h) EXPECT_LT(((*fit.centers)[h] - board.centres[h]).norm(), 0.0005) << hole_name(Hole(h));
-  EXPECT_NEAR(fit.radius, target.hole_radius, 0.0005);
+  // 0.03-0.05 mm off; the midpoints alone (midpoint_weight 1e6): 0.11-0.27 mm.
+  for (int h = 0; h < 4; ++h) EXPECT_LT(((*fit.centers)[h] - board.centres[h]).norm(), 0.0001) << hole_name(Hole(h));
+  EXPECT_NEAR(fit.radius, target.hole_radius, 0.0002);
   EXPECT_EQ(fit.crossings, static_cast<int>(crossings.size()));
 }
 
