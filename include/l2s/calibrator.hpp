@@ -95,6 +95,10 @@ struct PoseReport {
   /// Its lidar centres are the pattern fitted to its rings' rim crossings
   /// (Params::fit_lidar_rim_crossings), not the clustered frames' centres.
   bool lidar_rims_fitted = false;
+  /// That fit's apparent hole radius over the target's (0 when not fitted):
+  /// below 1, the beam's footprint mixes board and hole at the rims, and
+  /// where a ring seems to leave the board depends on the echo's energy.
+  double lidar_rim_radius_ratio = 0.0;
 };
 
 /// The facade: one per rig and calibration run (see thread safety above).

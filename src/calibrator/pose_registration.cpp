@@ -103,6 +103,7 @@ void fit_rim_crossings(PoseReport& report, const std::vector<int>& frames, const
   const RimCrossingFit fit = fit_pattern_to_rim_crossings(report.lidar_centroids.centers, *report.lidar_plane,
                                                           crossings, *evidence.target, fit_params);
   report.lidar_rims_fitted = fit.centers.has_value();
+  if (fit.centers) report.lidar_rim_radius_ratio = fit.radius / evidence.target->hole_radius;
   if (fit.centers)
     report.lidar_centroids.centers = *fit.centers;
   else
@@ -200,9 +201,15 @@ Plane camera_plane(const HoleCenters& centers) {
 /// 1.53 mm / 0.032 deg -> 0.86 mm / 0.018 deg. Clustered lidar centres keep
 /// the defaults: with these weights they gave 2.33 mm / 0.069 deg on seed 1
 /// (defaults: 1.29 mm / 0.034 deg), their 1-1.5 mm biases then outweigh the planes.
-BoardPlaneWeights camera_pose_weights(bool rims_fitted) {
+/// So do fitted ones whose holes look smaller than they are: a beam
+/// footprint (the simulator's, 4.5 mm smaller radius at 3-4 m) biased them by
+/// 1-1.7 mm, and these weights made the nine settings 3.55 mm / 0.069 deg
+/// where the defaults give about 2 mm / 0.05 deg.
+constexpr double kSharpRimRatio = 0.99;  ///< fitted radius over the target's: 0.997-1.003 without a footprint
+
+BoardPlaneWeights camera_pose_weights(bool sharp_rims) {
   BoardPlaneWeights w;
-  if (!rims_fitted) return w;
+  if (!sharp_rims) return w;
   w.centre_sigma = 0.0003;
   w.source_depth_sigma = 0.001;
   w.normal_sigma = 0.0012;
@@ -218,16 +225,16 @@ BoardPlaneWeights camera_pose_weights(bool rims_fitted) {
 /// then trusted beyond its accuracy, so a single pose keeps the centre fit.
 void refine_with_planes(Calibrator::Result& result) {
   std::vector<BoardPoseObservation> poses;
-  bool rims_fitted = true;
+  bool sharp_rims = true;
   for (const PoseReport& pose : result.poses)
     if (pose.used && pose.lidar_plane) {
-      rims_fitted = rims_fitted && pose.lidar_rims_fitted;
+      sharp_rims = sharp_rims && pose.lidar_rims_fitted && pose.lidar_rim_radius_ratio > kSharpRimRatio;
       poses.push_back({pose.lidar_centroids.centers, pose.camera_centroids.centers, *pose.lidar_plane,
                        camera_plane(pose.camera_centroids.centers)});
     }
   if (poses.size() < 2) return;
   const Eigen::Isometry3d refined =
-      refine_with_board_planes(result.T_lidar_camera, poses, camera_pose_weights(rims_fitted));
+      refine_with_board_planes(result.T_lidar_camera, poses, camera_pose_weights(sharp_rims));
   const Eigen::Isometry3d moved = result.T_lidar_camera.inverse() * refined;
   std::ostringstream note;
   note.precision(2);

@@ -117,6 +117,8 @@ void emit_poses(YAML::Emitter& out, const Calibrator::Result& result) {
     out << YAML::Key << "used" << YAML::Value << pose.used;
     if (std::isfinite(pose.rms)) out << YAML::Key << "rms_m" << YAML::Value << format_number(pose.rms);
     out << YAML::Key << "lidar_centres" << YAML::Value << (pose.lidar_rims_fitted ? "rim_crossings" : "clustered");
+    if (pose.lidar_rims_fitted)
+      out << YAML::Key << "lidar_rim_radius_ratio" << YAML::Value << format_number(pose.lidar_rim_radius_ratio);
     if (!pose.reason.empty()) out << YAML::Key << "reason" << YAML::Value << pose.reason;
     out << YAML::EndMap;
   }
