@@ -36,7 +36,8 @@ struct TargetStreamEvidence {
 /// no transform is found. With params.fit_lidar_rim_crossings each pose's
 /// lidar centres are the `target` pattern fitted to its rim crossings.
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
-                    const Target& target, const Calibrator::Params& params, const SourceRange& camera_range, Calibrator::Result& result);
+                    const Target& target, const Calibrator::Params& params, const SourceRange& camera_range,
+                    Calibrator::Result& result);
 
 /// What the two streams are called in reasons ("lidar", "camera").
 using StreamNames = std::array<std::string, 2>;
@@ -48,8 +49,8 @@ using StreamNames = std::array<std::string, 2>;
 /// `lidar`: stream 0's board plane per frame, when known; with them (and
 /// params.refine_with_board_planes) the fit is refined with each used pose's
 /// planes, stream 1's through its centres; its rim crossings, when known
-/// (and params.fit_lidar_rim_crossings), give each pose's stream 0 centres. `coarse_source`: frames
-/// whose stream 1 centres are a fallback (the camera's stereo circle fit when
+/// (and params.fit_lidar_rim_crossings), give each pose's stream 0 centres.
+/// `coarse_source`: frames whose stream 1 centres are a fallback (the camera's stereo circle fit when
 /// its rim refinement failed); a pose with enough other frames leaves them out.
 bool register_pose_streams(const std::vector<FrameCenters>& streams, const StreamNames& names,
                            const Calibrator::Params& params, Calibrator::Result& result,

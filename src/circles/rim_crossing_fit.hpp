@@ -27,23 +27,20 @@
 namespace l2s::detail {
 
 struct RimCrossingFitParams {
-  bool model_thickness = true;  ///< a ray sees the aperture of a thick board (front and back rim)
-  bool fit_radius = true;       ///< estimate the apparent hole radius (one for all four)
-  double midpoint_weight =
-      1e-3;  ///< weight of an interval's midpoint against a violated interval end
-  double max_violation = 0.01;  ///< [m] a crossing whose interval misses the fitted rim by more is
-                                ///< dropped (a mixed return)
-  double max_shift = 0.02;  ///< [m] the fit may move a hole centre at most this far from the start
-  int min_crossings = 8;    ///< fewest crossings, over at least three holes
-  int iterations = 40;      ///< Gauss-Newton steps
+  bool model_thickness = true;    ///< a ray sees the aperture of a thick board (front and back rim)
+  bool fit_radius = true;         ///< estimate the apparent hole radius (one for all four)
+  double midpoint_weight = 1e-3;  ///< weight of an interval's midpoint against a violated interval end
+  double max_violation = 0.01;    ///< [m] a crossing whose interval misses the fitted rim by more is left out
+  double max_shift = 0.02;        ///< [m] the fit may move a hole centre at most this far from the start
+  int min_crossings = 8;          ///< fewest crossings, over at least three holes
+  int iterations = 40;            ///< Gauss-Newton steps
 };
 
 struct RimCrossingFit {
-  std::optional<HoleCenters>
-      centers;  ///< [m] on `plane`, sensor frame, labelled as the start; empty when not fitted
-  std::string reason;   ///< why not
-  int crossings = 0;    ///< crossings used
-  double radius = 0.0;  ///< [m] apparent hole radius of the fit
+  std::optional<HoleCenters> centers;  ///< [m] on `plane`, sensor frame, labelled as the start; empty when not fitted
+  std::string reason;                  ///< why not
+  int crossings = 0;                   ///< crossings used
+  double radius = 0.0;                 ///< [m] apparent hole radius of the fit
 };
 
 /// The pattern of `target` fitted to `crossings` (sensor frame, each on its
