@@ -7,6 +7,7 @@
 #include "verify/hypothesis_search.hpp"
 #include "verify/stereo_evidence.hpp"
 
+#include <memory>
 #include <sstream>
 
 namespace l2s::detail {
@@ -72,25 +73,25 @@ struct CameraFrame {
 
 /// Board points, edges, circles and the images' evidence for one hypothesis:
 /// with a located board, from a full-resolution pass over its region; else
-/// from the full-frame cloud's candidate.
+/// from the full-frame cloud's candidate. An attempt is shared, not copied,
+/// between the search and what `l2s detect` shows (its region's cloud and
+/// board points are megabytes).
 class CameraHypothesisTester {
  public:
   CameraHypothesisTester(const CameraFrame& frame, const PlaneSegmenter::Result& planes,
                          const StereoBoardLocator::Result* located, const StereoCloud* full_cloud)
       : f_(frame), planes_(planes), located_(located), full_cloud_(full_cloud) {}
 
-  std::optional<CameraAttempt> operator()(BoardHypothesis& hypothesis) {
-    CameraAttempt attempt;
+  std::optional<std::shared_ptr<CameraAttempt>> operator()(BoardHypothesis& hypothesis) {
+    const auto shared = std::make_shared<CameraAttempt>();
+    CameraAttempt& attempt = *shared;
     attempt.candidate = hypothesis.candidate;
     if (const int same = board_already_tried(attempt.candidate); same >= 0) {
       stop(hypothesis, "duplicate", "a piece of the board already found on plane #" + std::to_string(same));
       return std::nullopt;
     }
-    if (!(collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis))) {
-      if (!first_) first_ = std::move(attempt);
-      return std::nullopt;
-    }
-    if (!first_) first_ = attempt;
+    if (!first_) first_ = shared;
+    if (!(collect_board(attempt, hypothesis) && find_holes(attempt, hypothesis))) return std::nullopt;
     attempt.T_camera_board = board_pose_from_centers(attempt.circles.centers, attempt.plane);
     boards_found_.push_back({attempt.candidate, attempt.T_camera_board});
     StereoEvidenceParams evidence_params;
@@ -111,18 +112,16 @@ class CameraHypothesisTester {
         reason.precision(1);
         reason << std::fixed << "the rim refinement diverged (rms " << attempt.refined->rms_px
                << " px): no pose of this board fits the images' rims";
-        if (!first_ || first_->candidate == attempt.candidate) first_ = std::move(attempt);
         stop(hypothesis, "refine", reason.str());
         return std::nullopt;
       }
     }
-    // The first hypothesis is what `l2s detect` shows when none is verified:
-    // with its refinement, which is what rejected it.
-    if (first_->candidate == attempt.candidate) first_ = attempt;
-    return attempt;
+    return shared;
   }
 
-  std::optional<CameraAttempt>& first() { return first_; }
+  /// The first hypothesis tried: what `l2s detect` shows when none is
+  /// verified, with the stage that rejected it.
+  const std::shared_ptr<CameraAttempt>& first() const { return first_; }
 
  private:
   bool stop(BoardHypothesis& hypothesis, const char* stage, const std::string& reason) {
@@ -230,7 +229,7 @@ class CameraHypothesisTester {
   const PlaneSegmenter::Result& planes_;
   const StereoBoardLocator::Result* located_;
   const StereoCloud* full_cloud_;
-  std::optional<CameraAttempt> first_;
+  std::shared_ptr<CameraAttempt> first_;
   std::vector<std::pair<int, Eigen::Isometry3d>> boards_found_;  ///< (candidate, T_camera_board) with four holes
 };
 
@@ -325,13 +324,15 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   if (!planes) return report;
 
   CameraHypothesisTester tester(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
-  std::optional<CameraAttempt> best =
-      search_hypotheses<CameraAttempt>(*planes, BoardVerifier(params.camera_verifier), t.hypotheses, tester);
+  const std::optional<std::shared_ptr<CameraAttempt>> found =
+      search_hypotheses<std::shared_ptr<CameraAttempt>>(*planes, BoardVerifier(params.camera_verifier),
+                                                        t.hypotheses, tester);
   report.hypotheses = static_cast<int>(t.hypotheses.size());
-  if (!best) {
+  if (!found) {
     if (tester.first()) keep_stages(t, std::move(*tester.first()));
     return fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
   }
+  const std::shared_ptr<CameraAttempt>& best = *found;
   report.plane_inliers = best->board.size();
   report.edge_points = best->edges.edges.size();
   report.fit_rms = best->circles.rms;
