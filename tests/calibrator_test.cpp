@@ -1,5 +1,6 @@
 // The Calibrator facade's streaming API: a camera report computed once and
-// shared (camera_branch + add(lidar, camera)) gives what add() gives.
+// shared, or ahead on another thread (camera_branch + add(lidar, camera)),
+// gives what add() gives.
 
 #include <l2s/calibrator.hpp>
 #include <l2s/sim/simulation.hpp>
@@ -69,6 +70,64 @@ TEST(Calibrator, LidarFromAnotherModelUsesTheSameCameraReport) {
     EXPECT_TRUE(report.lidar.centers[k].isApprox(expected.lidar.centers[k], 1e-12)) << "hole " << k;
   }
 }
+
+/// `l2s calibrate` runs the camera branches ahead on other threads and adds
+/// their reports: with the scene check on (default preset), its verdict and
+/// scores, which measure the image edges of the frames it keeps, must be those
+/// of add(lidar, left, right), also for raw images (the check's edges are of
+/// the rectified image) and for a ring-free lidar (whose window's frames the
+/// check takes the camera of).
+struct CheckedCase {
+  const char* name;
+  const char* lidar;
+  bool raw;
+};
+
+class SharedCameraReportWithCheck : public ::testing::TestWithParam<CheckedCase> {};
+
+TEST_P(SharedCameraReportWithCheck, ChecksAsAddDoes) {
+  auto config = sim::SimulationConfig::paper(3, GetParam().lidar);
+  config.frames = 4;
+  config.seed = 5;
+  if (GetParam().raw) config.rig = config.rig.with_real_lenses(sim::DistortionModel::PlumbBob);
+  const sim::DatasetSimulator simulator(config);
+  auto params = Calibrator::Params::preset("default");
+  params.ring_free_frames = 2;
+  Calibrator whole(simulator.cameras(), config.target, params);
+  Calibrator shared(simulator.cameras(), config.target, params);
+  for (int i = 0; i < config.frames; ++i) {
+    const auto frame = simulator.frame(i);
+    whole.add(frame.lidar, frame.left, frame.right);
+    const BranchReport camera = shared.camera_branch(frame.left, frame.right);
+    ASSERT_TRUE(camera.observation && camera.check_left) << "the check's part of the camera report";
+    EXPECT_TRUE(camera.observation->edges.empty()) << "edges are measured by add(), for kept frames only";
+    shared.add(frame.lidar, camera);
+  }
+  const auto a = whole.result();
+  const auto b = shared.result();
+  ASSERT_TRUE(a.found) << a.reason;
+  ASSERT_TRUE(b.found) << b.reason;
+  ASSERT_TRUE(a.checked && b.checked);
+  EXPECT_TRUE(a.T_lidar_camera.isApprox(b.T_lidar_camera, 1e-12));
+  EXPECT_EQ(a.quality.verdict, b.quality.verdict);
+  EXPECT_EQ(a.quality.reasons, b.quality.reasons);
+  EXPECT_EQ(a.quality.scores.edge_score, b.quality.scores.edge_score);
+  EXPECT_EQ(a.quality.scores.support, b.quality.scores.support);
+  ASSERT_EQ(whole.check_frames().size(), shared.check_frames().size());
+  for (std::size_t k = 0; k < whole.check_frames().size(); ++k) {
+    const CameraObservation& expected = whole.check_frames()[k].camera;
+    const CameraObservation& got = shared.check_frames()[k].camera;
+    EXPECT_FALSE(got.edges.empty()) << "frame " << k;
+    EXPECT_EQ(got.edges.distance, expected.edges.distance) << "frame " << k;
+    EXPECT_EQ(got.depth.depth.size(), expected.depth.depth.size()) << "frame " << k;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Calibrator, SharedCameraReportWithCheck,
+                         ::testing::Values(CheckedCase{"rectified", "vlp16", false},
+                                           CheckedCase{"raw", "vlp16", true},
+                                           CheckedCase{"ring_free", "avia", false}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace l2s

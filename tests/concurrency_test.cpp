@@ -1,6 +1,7 @@
 // Concurrency (run under ThreadSanitizer by scripts/sanitize.sh): what the
 // headers promise about threads. Separate Calibrators in separate threads,
-// one const Calibrator's camera_branch() from several threads, the
+// one const Calibrator's camera_branch() from several threads and beside its
+// add(), the
 // simulator's const frame() from several threads, and atomic writes of one
 // file from two threads. Each threaded result must equal the one-thread result.
 
@@ -89,6 +90,30 @@ TEST(Concurrency, CameraBranchOfOneCalibratorFromTwoThreads) {
     EXPECT_EQ(report.reason, alone.reason);
     for (int i = 0; i < 4; ++i) EXPECT_EQ(report.centers[i], alone.centers[i]);
   }
+}
+
+// What `l2s calibrate` does: the next frame's camera branch on a worker
+// while add() accumulates the frame before (default preset: the scene check
+// measures the kept frames' edges in add()).
+TEST(Concurrency, CameraBranchAheadWhileAddRuns) {
+  Calibrator sequential(simulator().cameras(), simulator().config().target);
+  for (const auto& frame : frames()) sequential.add(frame.lidar, frame.left, frame.right);
+  Calibrator pipelined(simulator().cameras(), simulator().config().target);
+  BranchReport current = pipelined.camera_branch(frames()[0].left, frames()[0].right);
+  for (int i = 0; i < kFrames; ++i) {
+    BranchReport next;
+    std::thread ahead([&] {
+      if (i + 1 < kFrames) next = pipelined.camera_branch(frames()[i + 1].left, frames()[i + 1].right);
+    });
+    pipelined.add(frames()[i].lidar, current);
+    ahead.join();
+    current = next;
+  }
+  const auto expected = sequential.result();
+  const auto got = pipelined.result();
+  ASSERT_EQ(got.found, expected.found) << got.reason;
+  EXPECT_TRUE(got.T_lidar_camera.isApprox(expected.T_lidar_camera, 1e-12));
+  EXPECT_EQ(got.quality.verdict, expected.quality.verdict);
 }
 
 TEST(Concurrency, SimulatorFramesFromTwoThreads) {

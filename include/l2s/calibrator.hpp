@@ -6,6 +6,9 @@
 //
 // Thread safety: one Calibrator is not safe to share; add(), reset() and
 // result() of the same instance need one thread at a time (or a lock).
+// camera_branch() is the exception: it reads only what the calibrator was
+// built with, so it may run on other threads, concurrently with itself and
+// with add() (`l2s calibrate` runs the next frames' camera branches so).
 // Separate instances share nothing and may run in parallel threads.
 // camera_branch() is const and may run concurrently with itself on one
 // instance (it reads only the cameras, target and params).
@@ -67,8 +70,12 @@ struct BranchReport {
   double milliseconds = 0.0;      ///< [ms] wall time of the branch
   /// What the calibration check needs of the pair: set by
   /// Calibrator::camera_branch() (so add(lidar, camera) can check), kept by
-  /// add() only for the frames it checks.
+  /// add() only for the frames it checks. Its image edges, the costly part,
+  /// are measured by add() from check_left, only for those frames.
   std::shared_ptr<const CameraObservation> observation;
+  /// The left image the check measures edges in (rectified when the
+  /// dataset's images are raw); set with observation, dropped by add().
+  std::shared_ptr<const Image> check_left;
 };
 
 /// Diagnostics of one frame: both branches.
@@ -251,7 +258,9 @@ class L2S_EXPORT Calibrator {
   /// The camera branch of add() alone, accumulating nothing. Its report can be
   /// given to add(lidar, camera) of every calibrator with the same cameras,
   /// target and camera-side params (one per lidar model, say), so the stereo
-  /// work of a frame is done once. Same exceptions as add().
+  /// work of a frame is done once, or run ahead on another thread. Same
+  /// exceptions as add(); add(lidar, camera_branch(left, right)) gives what
+  /// add(lidar, left, right) gives.
   BranchReport camera_branch(const Image& left, const Image& right) const;
 
   /// add() with the camera branch already run by camera_branch(); only the

@@ -102,6 +102,7 @@ struct Calibrator::Impl {
       }
     }
     report.camera.observation.reset();  // held by the kept CheckFrame, if at all
+    report.camera.check_left.reset();
     frames.push_back(report);
     return report;
   }
@@ -242,9 +243,15 @@ BranchReport Calibrator::camera_branch(const Image& left, const Image& right) co
   BranchReport report = timed([&] {
     return detail::run_camera_branch(left, right, *impl.camera_setup, impl.target, impl.params, &trace);
   });
-  if (impl.params.check_result && report.found)
+  // A frame without the board still shows the scene: add() checks with such
+  // frames too, and add(lidar, camera) must check as add() would. The edges
+  // wait for add() to keep the frame (a fifth of a frame's work otherwise).
+  if (impl.params.check_result) {
     report.observation = std::make_shared<const CameraObservation>(
-        observe_camera(left, trace, true, impl.cameras, impl.observer));
+        observe_camera(left, trace, report.found, impl.cameras, impl.observer, false));
+    report.check_left = trace.rectified ? std::make_shared<const Image>(std::move(trace.rectified->left))
+                                        : std::make_shared<const Image>(left);
+  }
   return report;
 }
 
@@ -299,10 +306,19 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera,
   return impl_->record(
       std::move(report), id, ring_free,
       [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl_->observer); },
-      [&] {
-        if (camera.observation) return camera.observation;
-        return std::make_shared<const CameraObservation>(camera.found ? observation_from_centers(camera.centers)
-                                                                      : CameraObservation{});
+      [&, observation = std::shared_ptr<const CameraObservation>()]() mutable {
+        if (observation) return observation;  // asked twice for a ring-free window's frame
+        if (!camera.observation)
+          observation = std::make_shared<const CameraObservation>(
+              camera.found ? observation_from_centers(camera.centers) : CameraObservation{});
+        else if (!camera.check_left || !camera.observation->edges.empty())
+          observation = camera.observation;
+        else {
+          auto complete = std::make_shared<CameraObservation>(*camera.observation);
+          complete->edges = impl_->observer.observe_edges(*camera.check_left, impl_->camera_setup->cameras);
+          observation = std::move(complete);
+        }
+        return observation;
       });
 }
 

@@ -19,9 +19,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -81,22 +84,55 @@ Image overlay_image(const io::Dataset& dataset, const Calibrator& calibrator, co
                              SceneObserver(calibrator.params().observer), caption);
 }
 
+/// One frame read and, for a stereo dataset, its camera branch run.
+struct PreparedFrame {
+  io::Frame frame;
+  std::optional<BranchReport> camera;
+};
+
 /// Streams the first `count` frames into the calibrator; returns the last
 /// one (the overlay's fallback). Warns once about sweeps whose rings had to
 /// be recovered and look doubtful.
+///
+/// Stereo frames are read and their camera branch run `kFramesAhead` frames
+/// ahead on worker threads, while this thread runs each frame's lidar branch
+/// and accumulates the frames in order (Calibrator::camera_branch() reads only
+/// what the calibrator was built with). The camera branch of one frame uses
+/// about one core (its stereo matching parallelises little), so on two cores
+/// two frames in flight nearly halve the time per frame. The result is the
+/// one add(lidar, left, right) gives frame by frame; a frame that cannot be
+/// read throws in order, as before.
 io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::size_t count, bool verbose) {
+  constexpr std::size_t kFramesAhead = 2;
   ProgressBar progress("calibrate", count);
   io::Frame last_frame;
   std::size_t doubtful_rings = 0;
   std::string first_doubt;
+  const bool stereo = !dataset.mono();
+  const auto prepare = [&dataset, &calibrator, stereo](std::size_t i) {
+    PreparedFrame prepared{dataset.load(i), std::nullopt};
+    if (stereo) prepared.camera = calibrator.camera_branch(prepared.frame.left, prepared.frame.right);
+    return prepared;
+  };
+  std::deque<std::future<PreparedFrame>> ahead;
+  std::size_t next = 0;
+  const auto launch = [&] {
+    while (next < count && ahead.size() < kFramesAhead) ahead.push_back(std::async(std::launch::async, prepare, next++));
+  };
+  // Workers still running when an exception leaves finish before the
+  // dataset and calibrator they use are gone: the futures' destructors wait.
   for (std::size_t i = 0; i < count; ++i) {
-    io::Frame frame = dataset.load(i);
+    launch();
+    PreparedFrame prepared = ahead.front().get();
+    ahead.pop_front();
+    launch();
+    io::Frame& frame = prepared.frame;
     if (frame.ring_recovery && (frame.ring_recovery->doubtful ||
                                 frame.ring_recovery->structure == io::ScanStructure::RingFree)) {
       if (doubtful_rings++ == 0) first_doubt = frame.stem + ": " + frame.ring_recovery->summary();
     }
-    const FrameReport report = dataset.mono() ? calibrator.add(frame.lidar, frame.left, frame.stem)
-                                              : calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
+    const FrameReport report = prepared.camera ? calibrator.add(frame.lidar, *prepared.camera, frame.stem)
+                                               : calibrator.add(frame.lidar, frame.left, frame.stem);
     if (verbose) print_frame_failure(report);
     progress.update(i + 1);
     last_frame = std::move(frame);
