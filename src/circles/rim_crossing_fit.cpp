@@ -1,5 +1,7 @@
 #include "circles/rim_crossing_fit.hpp"
 
+#include "circles/circle_fit.hpp"
+
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
 
@@ -81,23 +83,29 @@ struct Pattern {
   }
 };
 
+/// The ray through an in-plane point as the circle fit sees an edge point:
+/// where it leaves the board (the back rim) is the same circle shifted.
+EdgePoint2 ray_at(const Eigen::Vector2d& q, const Interval& iv, bool thick) {
+  return EdgePoint2{q, thick ? iv.through : Eigen::Vector2d::Zero()};
+}
+
 /// Signed distance of an in-plane point from the aperture a ray through it
-/// sees (positive on the board) and its gradient in x.
+/// sees (positive on the board: aperture_residual) and its gradient in x.
 double aperture_distance(const Pattern& pattern, const Vector4& x, const Interval& iv,
                          const Eigen::Vector2d& q, bool thick, Vector4* gradient) {
   const Eigen::Vector2d c = pattern.centre(x, iv.index);
-  Eigen::Vector2d d = q - c;
-  // The back rim: where the ray leaves the board, the same circle shifted.
-  if (thick && (q + iv.through - c).norm() > d.norm()) d = q + iv.through - c;
+  const EdgePoint2 ray = ray_at(q, iv, thick);
+  const Eigen::Vector2d front = ray.q - c, back = ray.q + ray.shift - c;
+  const Eigen::Vector2d d = back.norm() > front.norm() ? back : front;  // the rim that bounds the aperture
   const double length = d.norm();
   if (length < 1e-12) {
     gradient->setZero();
-    return -x(3);
+  } else {
+    const Eigen::Vector2d n = d / length;
+    const Eigen::Vector2d arm = c - pattern.centroid - x.head<2>();  // d c / d theta = J arm
+    (*gradient) << -n.x(), -n.y(), -(n.x() * -arm.y() + n.y() * arm.x()), -1.0;
   }
-  const Eigen::Vector2d n = d / length;
-  const Eigen::Vector2d arm = c - pattern.centroid - x.head<2>();  // d c / d theta = J arm
-  (*gradient) << -n.x(), -n.y(), -(n.x() * -arm.y() + n.y() * arm.x()), -1.0;
-  return length - x(3);
+  return aperture_residual(ray, c, x(3));
 }
 
 struct Solution {
@@ -135,9 +143,9 @@ Solution solve(const Pattern& pattern, const std::vector<Interval>& intervals,
   }
   out.x = x;
   for (const Interval& iv : intervals) {
-    Vector4 J;
-    const double board = aperture_distance(pattern, x, iv, iv.board, params.model_thickness, &J);
-    const double hole = aperture_distance(pattern, x, iv, iv.hole, params.model_thickness, &J);
+    const Eigen::Vector2d c = pattern.centre(x, iv.index);
+    const double board = aperture_residual(ray_at(iv.board, iv, params.model_thickness), c, x(3));
+    const double hole = aperture_residual(ray_at(iv.hole, iv, params.model_thickness), c, x(3));
     out.violation.push_back(std::max({0.0, -board, hole}));
   }
   return out;
