@@ -197,11 +197,14 @@ std::vector<int> most_supported_line(const std::vector<Eigen::Vector2d>& uv, con
     const Eigen::Vector2d dir = (b - a).normalized();
     // Only candidate borders are worth counting: orientation first.
     if (std::max(std::abs(dir.x()), std::abs(dir.y())) < cos_tilt) continue;
+    // Counted first: most samples lose and need no list of their inliers.
     const Line2 candidate{a, dir};
-    std::vector<int> inliers;
+    std::size_t count = 0;
+    for (int k : alive) count += candidate.distance(uv[k]) <= params.line_distance;
+    if (count <= best_inliers.size()) continue;
+    best_inliers.clear();
     for (int k : alive)
-      if (candidate.distance(uv[k]) <= params.line_distance) inliers.push_back(k);
-    if (inliers.size() > best_inliers.size()) best_inliers.swap(inliers);
+      if (candidate.distance(uv[k]) <= params.line_distance) best_inliers.push_back(k);
   }
   return best_inliers;
 }
