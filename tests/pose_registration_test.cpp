@@ -98,6 +98,29 @@ TEST(PoseRegistration, BoardPlanesHoldTheFitAgainstPerPoseCentreBiases) {
   EXPECT_LT(with_planes, 0.75 * centres_only);  // 0.6 here; the nine settings, 3 poses: 0.5
 }
 
+// The tight weights of the plane refinement need every used pose's lidar
+// centres fitted to its rim crossings with holes of the target's size: a
+// beam footprint shrinks them (the simulator's: 4.5 mm at 3-4 m, ratio
+// 0.96), biases the fitted centres by 1-1.7 mm, and the tight weights then
+// made the nine settings 3.55 mm / 0.069 deg instead of about 2 / 0.05.
+TEST(PoseRegistration, LidarCentresAreTrustedTightlyOnlyWhenEveryPosesHolesHaveTheirSize) {
+  const auto pose = [](bool fitted, double ratio, bool used = true) {
+    PoseReport p;
+    p.used = used;
+    p.lidar_plane = Plane(Eigen::Vector3d(-1, 0, 0), 3.0);
+    p.lidar_rims_fitted = fitted;
+    p.lidar_rim_radius_ratio = ratio;
+    return p;
+  };
+  EXPECT_TRUE(detail::lidar_centres_sharp({pose(true, 0.997), pose(true, 1.003), pose(true, 1.0)}));
+  EXPECT_FALSE(detail::lidar_centres_sharp({pose(true, 0.997), pose(true, 0.962), pose(true, 1.0)}))
+      << "one pose seen through a beam footprint";
+  EXPECT_FALSE(detail::lidar_centres_sharp({pose(true, 0.997), pose(false, 0.0)})) << "one pose's centres clustered";
+  EXPECT_TRUE(detail::lidar_centres_sharp({pose(true, 0.997), pose(true, 0.95, false), pose(true, 1.0)}))
+      << "a pose left out of the fit does not count";
+  EXPECT_FALSE(detail::lidar_centres_sharp({})) << "no pose, nothing to trust";
+}
+
 // A static board whose camera rim refinement failed in some frames: those
 // keep the stereo circle fit, pulled the same way in every frame by what is
 // seen through the holes (random scene 1060328696: 16 of 30 frames, 4 mm).

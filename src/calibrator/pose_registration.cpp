@@ -225,14 +225,12 @@ BoardPlaneWeights camera_pose_weights(bool sharp_rims) {
 /// then trusted beyond its accuracy, so a single pose keeps the centre fit.
 void refine_with_planes(Calibrator::Result& result) {
   std::vector<BoardPoseObservation> poses;
-  bool sharp_rims = true;
   for (const PoseReport& pose : result.poses)
-    if (pose.used && pose.lidar_plane) {
-      sharp_rims = sharp_rims && pose.lidar_rims_fitted && pose.lidar_rim_radius_ratio > kSharpRimRatio;
+    if (pose.used && pose.lidar_plane)
       poses.push_back({pose.lidar_centroids.centers, pose.camera_centroids.centers, *pose.lidar_plane,
                        camera_plane(pose.camera_centroids.centers)});
-    }
   if (poses.size() < 2) return;
+  const bool sharp_rims = lidar_centres_sharp(result.poses);
   const Eigen::Isometry3d refined =
       refine_with_board_planes(result.T_lidar_camera, poses, camera_pose_weights(sharp_rims));
   const Eigen::Isometry3d moved = result.T_lidar_camera.inverse() * refined;
@@ -240,7 +238,7 @@ void refine_with_planes(Calibrator::Result& result) {
   note.precision(2);
   note << std::fixed << "refined with the board planes of " << poses.size() << " pose(s): moved "
        << moved.translation().norm() * 1e3 << " mm, " << Eigen::AngleAxisd(moved.linear()).angle() * 180.0 / M_PI
-       << " deg";
+       << " deg" << (sharp_rims ? "; the lidar centres fitted to their rim crossings trusted to 0.3 mm" : "");
   result.notes.push_back(note.str());
   result.T_lidar_camera = refined;
 }
@@ -332,6 +330,16 @@ std::array<T, 4> permuted(const std::array<T, 4>& values, const HolePermutation&
 }
 
 }  // namespace
+
+bool lidar_centres_sharp(const std::vector<PoseReport>& poses) {
+  bool any = false;
+  for (const PoseReport& pose : poses) {
+    if (!(pose.used && pose.lidar_plane)) continue;
+    if (!(pose.lidar_rims_fitted && pose.lidar_rim_radius_ratio > kSharpRimRatio)) return false;
+    any = true;
+  }
+  return any;
+}
 
 bool register_poses(const std::vector<FrameReport>& frames, const std::optional<HoleCenters>& late_lidar,
                     const Target& target, const Calibrator::Params& params, const SourceRange& camera_range,
