@@ -6,12 +6,10 @@
 //
 // Thread safety: one Calibrator is not safe to share; add(), reset() and
 // result() of the same instance need one thread at a time (or a lock).
-// camera_branch() is the exception: it reads only what the calibrator was
-// built with, so it may run on other threads, concurrently with itself and
-// with add() (`l2s calibrate` runs the next frames' camera branches so).
 // Separate instances share nothing and may run in parallel threads.
-// camera_branch() is const and may run concurrently with itself on one
-// instance (it reads only the cameras, target and params).
+// camera_branch() is const and may run concurrently with itself and with
+// add() on one instance (it reads only the cameras, target and params;
+// `l2s calibrate` runs the next frames' camera branches so).
 
 #include <l2s/board_pose_refiner.hpp>
 #include <l2s/board_verifier.hpp>

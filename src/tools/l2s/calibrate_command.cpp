@@ -102,10 +102,10 @@ struct PreparedFrame {
 /// frame keeps about one core busy (its stereo matching parallelises little),
 /// so on two cores two frames in flight take a third off the time per frame
 /// (setting 1, 30 frames, runs interleaved with --frames-ahead 0: 7.8 ->
-/// 5.1 s). The result is the
-/// one add(lidar, left, right) gives frame by frame; a frame that cannot be
-/// read throws in order, as before. 0 frames ahead: one frame at a time,
-/// its two branches side by side (Calibrator::add).
+/// 5.1 s). The result is the one add(lidar, left, right) gives frame by
+/// frame; a frame that cannot be read throws in order, as before. 0 frames
+/// ahead: one frame at a time, its two branches side by side
+/// (Calibrator::add).
 io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::size_t count, bool verbose,
                      std::size_t frames_ahead) {
   ProgressBar progress("calibrate", count);
