@@ -1,9 +1,9 @@
 // Concurrency (run under ThreadSanitizer by scripts/sanitize.sh): what the
 // headers promise about threads. Separate Calibrators in separate threads,
 // one const Calibrator's camera_branch() from several threads and beside its
-// add(), the
-// simulator's const frame() from several threads, and atomic writes of one
-// file from two threads. Each threaded result must equal the one-thread result.
+// add(), the simulator's const frame() from several threads, and atomic
+// writes of one file from two threads. Each threaded result must equal the
+// one-thread result.
 
 #include <l2s/calibrator.hpp>
 #include <l2s/io/pcd.hpp>

@@ -58,8 +58,8 @@ cv::Mat canny_edges(const cv::Mat& gray, const SceneObserver::Params& params) {
   cv::Sobel(gray, dy, CV_16S, 0, 1, 3, 1.0, 0.0, cv::BORDER_REPLICATE);
   // The strongest edges: the 99.9th percentile of the Sobel magnitude (the
   // board's outline and rims are about a thousandth of an image's pixels).
-  // Ranked by the squared magnitude, an exact integer (a per-pixel square
-  // root is half of this function's time on a megapixel image).
+  // Ranked by the squared magnitude, an exact integer: one square root, not
+  // one per pixel.
   std::vector<std::int32_t> squared;
   squared.reserve(gray.total());
   for (int y = 0; y < gray.rows; ++y) {
