@@ -103,12 +103,13 @@ void fit_rim_crossings(PoseReport& report, const std::vector<int>& frames, const
   const RimCrossingFit fit = fit_pattern_to_rim_crossings(report.lidar_centroids.centers, *report.lidar_plane,
                                                           crossings, *evidence.target, fit_params);
   report.lidar_rims_fitted = fit.centers.has_value();
-  if (fit.centers) report.lidar_rim_radius_ratio = fit.radius / evidence.target->hole_radius;
-  if (fit.centers)
+  if (fit.centers) {
     report.lidar_centroids.centers = *fit.centers;
-  else
+    report.lidar_rim_radius_ratio = fit.radius / evidence.target->hole_radius;
+  } else {
     notes.push_back("pose " + std::to_string(index) + ": the " + name + " centres are the clustered ones (" +
                     fit.reason + ")");
+  }
 }
 
 PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t index,

@@ -127,8 +127,8 @@ io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::si
   };
   // Workers still running when an exception leaves finish before the
   // dataset and calibrator they use are gone: the futures' destructors wait.
+  launch();
   for (std::size_t i = 0; i < count; ++i) {
-    launch();
     PreparedFrame prepared = ahead.front().get();
     ahead.pop_front();
     launch();
