@@ -103,6 +103,13 @@ TEST_P(SharedCameraReportWithCheck, ChecksAsAddDoes) {
     EXPECT_TRUE(camera.observation->edges.empty()) << "edges are measured by add(), for kept frames only";
     shared.add(frame.lidar, camera);
   }
+  // A frame whose images show no board (the left image twice: no depth in
+  // the working range), which the check keeps for its scene evidence.
+  const auto frame = simulator.frame(0);
+  whole.add(frame.lidar, frame.left, frame.left);
+  const BranchReport blind = shared.camera_branch(frame.left, frame.left);
+  EXPECT_FALSE(blind.found);
+  shared.add(frame.lidar, blind);
   const auto a = whole.result();
   const auto b = shared.result();
   ASSERT_TRUE(a.found) << a.reason;
