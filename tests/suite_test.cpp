@@ -148,10 +148,16 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).verdict, "suspect");
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).covered, -1);
   row.covered = 5;
+  row.check_reasons = "only 55 % of the lidar returns agree, \"so\"; the edge score has no clear optimum in rx";
   const std::string line = to_csv_line(row);
   EXPECT_EQ(parse_csv_line(line).covered, 5);
-  // A results.csv of an earlier release has no covered column: it still reads.
-  const SuiteRow legacy = parse_csv_line(line.substr(0, line.rfind(',')));
+  EXPECT_EQ(parse_csv_line(line).check_reasons, row.check_reasons);
+  // results.csv of earlier releases have no check_reasons column, and before
+  // that no covered column: they still read.
+  const std::string without_reasons = line.substr(0, line.rfind(",\""));
+  EXPECT_EQ(parse_csv_line(without_reasons).covered, 5);
+  EXPECT_TRUE(parse_csv_line(without_reasons).check_reasons.empty());
+  const SuiteRow legacy = parse_csv_line(without_reasons.substr(0, without_reasons.rfind(',')));
   EXPECT_EQ(legacy.verdict, "suspect");
   EXPECT_EQ(legacy.covered, -1);
 
@@ -287,6 +293,26 @@ TEST(SuiteStats, SummarySortsTheVerdictsByTheTrueError) {
   EXPECT_NE(summary.find("| within 2 cm and 0.5 deg | 1 | 1 | 0 | 0 |"), std::string::npos) << summary;
   EXPECT_NE(summary.find("| in between | 1 | 0 | 1 | 0 |"), std::string::npos) << summary;
   EXPECT_NE(summary.find("| beyond 10 cm or 2 deg | 1 | 0 | 0 | 1 |"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("were not ok"), std::string::npos) << "no false alarm, no list";
+  EXPECT_EQ(summary.find("called ok"), std::string::npos) << "no missed error, no list";
+}
+
+TEST(SuiteStats, SummaryListsWhyGoodResultsWereNotOkAndWhichOffOnesWere) {
+  std::vector<SuiteRow> rows(4, sample_row());
+  for (int i = 0; i < 4; ++i) rows[i].setting = i + 1;
+  for (int i = 0; i < 2; ++i) {  // good, suspect for the same rule at other values
+    rows[i].e_t = 0.001, rows[i].e_r = 0.001, rows[i].verdict = "suspect";
+    rows[i].check_reasons = "only " + std::to_string(40 + i) + " % agree; the edge score has no clear optimum in rx";
+  }
+  rows[1].check_reasons = "only 41.5 % agree";
+  rows[2].e_t = 0.3, rows[2].e_r = 0.001, rows[2].verdict = "ok";  // off, let through
+  rows[2].scene = "wood on bricks";
+  rows[3].e_t = 0.001, rows[3].e_r = 0.001, rows[3].verdict = "ok";
+  const std::string summary = suite_summary_markdown(rows);
+  EXPECT_NE(summary.find("- 2 x only # % agree\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- 1 x the edge score has no clear optimum in rx\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("called ok:\n\n- " + rows[2].cell_key() + ": 300 mm"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("(wood on bricks)"), std::string::npos) << summary;
 }
 
 TEST(SuiteThresholds, ReportsCellsOutsideTheLimits) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <string>
 
 namespace l2s::sim::detail {
@@ -15,10 +16,42 @@ namespace {
 constexpr double kGoodT = 0.02, kGoodR = 0.5 * M_PI / 180.0;
 constexpr double kOffT = 0.10, kOffR = 2.0 * M_PI / 180.0;
 
+constexpr const char* kGood = "within 2 cm and 0.5 deg";
+constexpr const char* kOff = "beyond 10 cm or 2 deg";
+
 const char* error_class(const SuiteRow& row) {
-  if (row.e_t <= kGoodT && row.e_r <= kGoodR) return "within 2 cm and 0.5 deg";
-  if (row.e_t > kOffT || row.e_r > kOffR) return "beyond 10 cm or 2 deg";
+  if (row.e_t <= kGoodT && row.e_r <= kGoodR) return kGood;
+  if (row.e_t > kOffT || row.e_r > kOffR) return kOff;
   return "in between";
+}
+
+/// Why good results were not ok: each reason once, its numbers hidden so
+/// that the same rule met by several results counts together.
+void write_false_alarms(std::ostringstream& out, const std::map<std::string, const SuiteRow*>& last) {
+  std::map<std::string, int> reasons;
+  for (const auto& [key, row] : last) {
+    if (std::string(error_class(*row)) != kGood || row->verdict == "ok") continue;
+    std::stringstream list(row->check_reasons);
+    std::string reason;
+    while (std::getline(list, reason, ';')) {
+      reason = std::regex_replace(reason, std::regex("^ +"), "");
+      if (!reason.empty()) ++reasons[std::regex_replace(reason, std::regex("[+-]?[0-9]+(\\.[0-9]+)?"), "#")];
+    }
+  }
+  if (reasons.empty()) return;
+  out << "\nWhy results within 2 cm and 0.5 deg were not ok (a result may have several reasons):\n\n";
+  for (const auto& [reason, count] : reasons) out << "- " << count << " x " << reason << "\n";
+}
+
+/// Results far off that the check let through: the failure it exists to prevent.
+void write_missed_errors(std::ostringstream& out, const std::map<std::string, const SuiteRow*>& last) {
+  std::ostringstream list;
+  for (const auto& [key, row] : last)
+    if (std::string(error_class(*row)) == kOff && row->verdict == "ok")
+      list << "- " << key << ": " << row->e_t * 1e3 << " mm, " << row->e_r * 180.0 / M_PI << " deg"
+           << (row->scene.empty() ? "" : " (" + row->scene + ")") << "\n";
+  if (list.str().empty()) return;
+  out << "\nResults beyond 10 cm or 2 deg that the check called ok:\n\n" << list.str();
 }
 
 }  // namespace
@@ -32,7 +65,7 @@ void write_check_summary(std::ostringstream& out, const std::vector<SuiteRow>& r
     if (!kept || row.frames > kept->frames) kept = &row;
   }
   if (last.empty()) return;
-  const std::array<const char*, 3> classes = {"within 2 cm and 0.5 deg", "in between", "beyond 10 cm or 2 deg"};
+  const std::array<const char*, 3> classes = {kGood, "in between", kOff};
   std::map<std::string, std::map<std::string, int>> counts;  // class -> verdict -> runs
   for (const auto& [key, row] : last) ++counts[error_class(*row)][row->verdict];
 
@@ -45,6 +78,8 @@ void write_check_summary(std::ostringstream& out, const std::vector<SuiteRow>& r
     out << "| " << name << " | " << total << " | " << verdicts["ok"] << " | " << verdicts["suspect"] << " | "
         << verdicts["failed"] << " |\n";
   }
+  write_false_alarms(out, last);
+  write_missed_errors(out, last);
 }
 
 }  // namespace l2s::sim::detail

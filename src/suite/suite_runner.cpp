@@ -39,7 +39,11 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const
                   double wall_s, const std::string& scene) {
   SuiteRow row = SuiteRow::of(cell);
   row.scene = scene;
-  if (result.checked) row.verdict = verdict_name(result.quality.verdict);
+  if (result.checked) {
+    row.verdict = verdict_name(result.quality.verdict);
+    for (const std::string& reason : result.quality.reasons)
+      row.check_reasons += (row.check_reasons.empty() ? "" : "; ") + reason;
+  }
   row.covered = covered_dofs(result, T_true);
   row.frames = result.frames_added;
   row.success = result.found;
