@@ -43,6 +43,11 @@ TEST(CenterAccumulator, RecoversCentresDespiteOutlierFrames) {
     const CenterAccumulator::Result result = accumulator.estimate();
     ASSERT_TRUE(result.found) << result.reason;
     EXPECT_EQ(result.frames, 23);
+    // Which frames the estimate left out: the swapped one and the far one
+    // (its three other centres are in, one is not); the NaN is no centre.
+    std::vector<bool> clustered(23, true);
+    clustered[20] = clustered[21] = false;
+    EXPECT_EQ(result.clustered, clustered);
     for (int h = 0; h < 4; ++h) {
       EXPECT_LT((result.centers[h] - truth()[h]).norm(), 0.003) << "hole " << h;
       EXPECT_GE(result.counts[h], 20);

@@ -91,6 +91,10 @@ struct PoseReport {
   int first_frame = 0;   ///< index of its first frame among those added
   int last_frame = 0;    ///< index of its last frame (inclusive)
   std::vector<int> frames;  ///< frames whose centres it accumulated (outliers within first..last left out)
+  /// Frames of `frames` whose lidar (camera) detection the pose's centres left
+  /// out: elsewhere than that sensor's consensus over the pose, or outside its
+  /// centres' clusters. Wrong detections; the scene check ignores their board.
+  std::vector<int> lidar_outlier_frames, camera_outlier_frames;
   CenterAccumulator::Result lidar_centroids;   ///< clustered lidar centres of the pose
   CenterAccumulator::Result camera_centroids;  ///< clustered camera centres of the pose
   bool used = false;     ///< in the joint fit

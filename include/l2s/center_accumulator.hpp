@@ -47,6 +47,9 @@ class L2S_EXPORT CenterAccumulator {
     std::array<double, 4> spread{}; ///< [m] rms distance of the cluster's centres to its estimate
     int frames = 0;                 ///< frames added
     int relabelled_frames = 0;      ///< frames whose labels align_labels turned
+    /// Per frame added (in add() order): false when one of its centres lies
+    /// outside its hole's chosen cluster, i.e. the estimate left it out.
+    std::vector<bool> clustered;
   };
 
   // `Stage(Params = {})` does not compile with GCC while Params has default

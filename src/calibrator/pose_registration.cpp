@@ -12,6 +12,7 @@
 #include "plane/plane_fit.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -112,6 +113,17 @@ void fit_rim_crossings(PoseReport& report, const std::vector<int>& frames, const
   }
 }
 
+/// `outliers` (the frames the pose grouping left out of a stream) and the
+/// frames of `added` whose centres the stream's clusters left out, sorted.
+std::vector<int> left_out_frames(std::vector<int> outliers, const std::vector<int>& added,
+                                 const CenterAccumulator::Result& clusters) {
+  for (std::size_t k = 0; k < added.size() && k < clusters.clustered.size(); ++k)
+    if (!clusters.clustered[k]) outliers.push_back(added[k]);
+  std::sort(outliers.begin(), outliers.end());
+  outliers.erase(std::unique(outliers.begin(), outliers.end()), outliers.end());
+  return outliers;
+}
+
 PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t index,
                       const std::vector<FrameCenters>& streams, const std::vector<bool>& sparse,
                       const Calibrator::Params& params, const StreamNames& names,
@@ -122,6 +134,8 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   report.first_frame = pose.first;
   report.last_frame = pose.last;
   report.frames = pose.frames;
+  if (pose.stream_outliers.size() > 0) report.lidar_outlier_frames = pose.stream_outliers[0];
+  if (pose.stream_outliers.size() > 1) report.camera_outlier_frames = pose.stream_outliers[1];
   report.rms = std::numeric_limits<double>::quiet_NaN();
   CenterAccumulator lidar(params.accumulator), camera(params.accumulator);
   CenterAccumulator* accumulators[2] = {&lidar, &camera};
@@ -131,6 +145,7 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
     return std::find(bad.begin(), bad.end(), f) != bad.end();
   };
   const std::vector<bool> coarse = left_out_coarse(pose, streams, coarse_source);
+  std::array<std::vector<int>, 2> added;  // the frame of each add() per stream
   int left_out = 0;
   for (int f : pose.frames)
     for (std::size_t s = 0; s < 2; ++s) {
@@ -140,6 +155,7 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
         continue;
       }
       accumulators[s]->add(*streams[f][s]);
+      added[s].push_back(f);
     }
   if (left_out > 0)
     notes.push_back("pose " + std::to_string(index) + ": the " + names[1] + " centres of " + std::to_string(left_out) +
@@ -147,7 +163,10 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   for (std::size_t s = 0; s < 2; ++s)
     if (sparse[s])
       for (int f = 0; f < static_cast<int>(streams.size()); ++f)
-        if (streams[f][s] && pose_of_frame(poses, f) == index) accumulators[s]->add(*streams[f][s]);
+        if (streams[f][s] && pose_of_frame(poses, f) == index) {
+          accumulators[s]->add(*streams[f][s]);
+          added[s].push_back(f);
+        }
   const auto& planes = evidence.planes;
   std::vector<Plane> lidar_planes;
   std::vector<int> lidar_frames;
@@ -161,6 +180,8 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   if (params.fit_lidar_rim_crossings && report.lidar_centroids.found && report.lidar_plane && evidence.target)
     fit_rim_crossings(report, lidar_frames, evidence, params, names[0], index, notes);
   report.camera_centroids = camera.estimate();
+  report.lidar_outlier_frames = left_out_frames(report.lidar_outlier_frames, added[0], report.lidar_centroids);
+  report.camera_outlier_frames = left_out_frames(report.camera_outlier_frames, added[1], report.camera_centroids);
   if (!report.lidar_centroids.found)
     report.reason = names[0] + " centres do not cluster: " + report.lidar_centroids.reason;
   else if (!report.camera_centroids.found)

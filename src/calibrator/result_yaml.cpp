@@ -119,6 +119,13 @@ void emit_poses(YAML::Emitter& out, const Calibrator::Result& result) {
     out << YAML::Key << "lidar_centres" << YAML::Value << (pose.lidar_rims_fitted ? "rim_crossings" : "clustered");
     if (pose.lidar_rims_fitted)
       out << YAML::Key << "lidar_rim_radius_ratio" << YAML::Value << format_number(pose.lidar_rim_radius_ratio);
+    for (const auto& [key, frames] : {std::pair{"lidar_outlier_frames", &pose.lidar_outlier_frames},
+                                      std::pair{"camera_outlier_frames", &pose.camera_outlier_frames}}) {
+      if (frames->empty()) continue;
+      out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (const int f : *frames) out << f;
+      out << YAML::EndSeq;
+    }
     if (!pose.reason.empty()) out << YAML::Key << "reason" << YAML::Value << pose.reason;
     out << YAML::EndMap;
   }

@@ -137,13 +137,18 @@ CenterAccumulator::Result CenterAccumulator::estimate() const {
   }
   // Each hole's centres, every frame turned to the common labels.
   std::array<std::vector<Eigen::Vector3d>, 4> centers;
+  std::array<std::vector<int>, 4> frame_of;  // the frame each of centers[h] came from
   const std::vector<HoleSymmetry> turns = frame_turns();
   for (std::size_t i = 0; i < frames_.size(); ++i) {
     result.relabelled_frames += turns[i].degrees != 0;
     const HoleCenters turned = relabel(frames_[i], turns[i].permutation);
     for (int h = 0; h < 4; ++h)
-      if (turned[h].allFinite()) centers[h].push_back(turned[h]);
+      if (turned[h].allFinite()) {
+        centers[h].push_back(turned[h]);
+        frame_of[h].push_back(static_cast<int>(i));
+      }
   }
+  result.clustered.assign(frames_.size(), true);
   const int min_size = std::max(1, static_cast<int>(std::ceil(params_.min_cluster_fraction * frames - 1e-9)));
   const int max_size = static_cast<int>(std::floor(params_.max_cluster_fraction * frames + 1e-9));
   std::ostringstream reasons;
@@ -152,6 +157,10 @@ CenterAccumulator::Result CenterAccumulator::estimate() const {
     const std::vector<int> members = largest_cluster(centers[h], params_.cluster_tolerance);
     const int size = static_cast<int>(members.size());
     result.counts[h] = size;
+    std::vector<bool> member(centers[h].size(), false);
+    for (int k : members) member[k] = true;
+    for (std::size_t k = 0; k < member.size(); ++k)
+      if (!member[k]) result.clustered[frame_of[h][k]] = false;
     if (size < min_size || size > max_size) {
       if (reasons.tellp() > 0) reasons << "; ";
       reasons << "hole " << name << ": largest cluster has " << size << " of " << frames
