@@ -148,7 +148,7 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).verdict, "suspect");
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).covered, -1);
   row.covered = 5;
-  row.check_reasons = "only 55 % of the lidar returns agree, \"so\"; the edge score has no clear optimum in rx";
+  row.check_reasons = "only 55 % of the lidar returns agree, \"so\" | the edge score has no clear optimum in rx";
   const std::string line = to_csv_line(row);
   EXPECT_EQ(parse_csv_line(line).covered, 5);
   EXPECT_EQ(parse_csv_line(line).check_reasons, row.check_reasons);
@@ -302,14 +302,15 @@ TEST(SuiteStats, SummaryListsWhyGoodResultsWereNotOkAndWhichOffOnesWere) {
   for (int i = 0; i < 4; ++i) rows[i].setting = i + 1;
   for (int i = 0; i < 2; ++i) {  // good, suspect for the same rule at other values
     rows[i].e_t = 0.001, rows[i].e_r = 0.001, rows[i].verdict = "suspect";
-    rows[i].check_reasons = "only " + std::to_string(40 + i) + " % agree; the edge score has no clear optimum in rx";
+    rows[i].check_reasons = "only " + std::to_string(40 + i) + " % agree | the edge score has no clear optimum in rx";
   }
-  rows[1].check_reasons = "only 41.5 % agree";
+  rows[1].check_reasons = "only 41.5 % agree | a reason may hold a semicolon; like this";
   rows[2].e_t = 0.3, rows[2].e_r = 0.001, rows[2].verdict = "ok";  // off, let through
   rows[2].scene = "wood on bricks";
   rows[3].e_t = 0.001, rows[3].e_r = 0.001, rows[3].verdict = "ok";
   const std::string summary = suite_summary_markdown(rows);
   EXPECT_NE(summary.find("- 2 x only # % agree\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- 1 x a reason may hold a semicolon; like this\n"), std::string::npos) << summary;
   EXPECT_NE(summary.find("- 1 x the edge score has no clear optimum in rx\n"), std::string::npos) << summary;
   EXPECT_NE(summary.find("called ok:\n\n- " + rows[2].cell_key() + ": 300 mm"), std::string::npos) << summary;
   EXPECT_NE(summary.find("(wood on bricks)"), std::string::npos) << summary;

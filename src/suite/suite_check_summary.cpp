@@ -4,6 +4,7 @@
 
 #include "suite/suite_check_summary.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -31,11 +32,12 @@ void write_false_alarms(std::ostringstream& out, const std::map<std::string, con
   std::map<std::string, int> reasons;
   for (const auto& [key, row] : last) {
     if (std::string(error_class(*row)) != kGood || row->verdict == "ok") continue;
-    std::stringstream list(row->check_reasons);
-    std::string reason;
-    while (std::getline(list, reason, ';')) {
-      reason = std::regex_replace(reason, std::regex("^ +"), "");
+    const std::string& list = row->check_reasons;
+    for (std::size_t start = 0; start < list.size();) {
+      const std::size_t end = std::min(list.find(" | ", start), list.size());
+      const std::string reason = list.substr(start, end - start);
       if (!reason.empty()) ++reasons[std::regex_replace(reason, std::regex("[+-]?[0-9]+(\\.[0-9]+)?"), "#")];
+      start = end + 3;
     }
   }
   if (reasons.empty()) return;

@@ -42,7 +42,7 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const
   if (result.checked) {
     row.verdict = verdict_name(result.quality.verdict);
     for (const std::string& reason : result.quality.reasons)
-      row.check_reasons += (row.check_reasons.empty() ? "" : "; ") + reason;
+      row.check_reasons += (row.check_reasons.empty() ? "" : " | ") + reason;  // reasons hold "; " themselves
   }
   row.covered = covered_dofs(result, T_true);
   row.frames = result.frames_added;

@@ -91,7 +91,7 @@ struct L2S_SUITE_EXPORT SuiteRow {
   std::string scene;         ///< scenes: what was drawn (RandomScene::summary), else empty
   std::string verdict;       ///< the scene check's verdict (ok | suspect | failed), empty when not checked
   int covered = -1;          ///< DoFs (of six) whose true error the result's 95 % bound covers; -1: no valid uncertainty
-  std::string check_reasons; ///< the scene check's reasons for its verdict, joined by "; " (empty when ok)
+  std::string check_reasons; ///< the scene check's reasons for its verdict, joined by " | " (empty when ok)
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;
