@@ -75,7 +75,8 @@ TEST(CheckVerdict, PlaneOffsetCountsOnlyBeyondTheBoardPosesDepthPrecision) {
 // the board puts them 1.4 px apart for the paper's rig, while plain and
 // textured faces stayed within 0.32 px on random scenes. A wood-grain face
 // with the grain along the rows was up to 2 px off boards its rims placed
-// right: SGBM cannot match such texture along the rows.
+// right (one, 2094806729, 3.3 px): SGBM cannot match such texture along the
+// rows, so on such a face the offset alone is never more than suspect.
 TEST(CheckVerdict, StereoAgainstTheRimsCountsBeyondWhatTheFacesTextureAllows) {
   const CalibrationCheck::Params params;
   const auto judged = [&](double offset_px, double row_texture) {
@@ -93,7 +94,8 @@ TEST(CheckVerdict, StereoAgainstTheRimsCountsBeyondWhatTheFacesTextureAllows) {
   EXPECT_NE(scaled.reasons[0].find("target.yaml"), std::string::npos) << scaled.reasons[0];
   EXPECT_EQ(judged(-2.0, 0.9).verdict, Verdict::Ok);
   EXPECT_EQ(judged(2.7, 0.9).verdict, Verdict::Suspect);
-  EXPECT_EQ(judged(-3.5, 0.9).verdict, Verdict::Failed);
+  EXPECT_EQ(judged(-3.5, 0.9).verdict, Verdict::Suspect);
+  EXPECT_EQ(judged(-30.0, 0.9).verdict, Verdict::Suspect);
   EXPECT_EQ(judged(-3.5, 0.1).verdict, Verdict::Failed);
   EXPECT_EQ(judged(1.4, CalibrationCheck::Scores::kNaN).verdict, Verdict::Suspect);  // not measured: as a plain face
 }

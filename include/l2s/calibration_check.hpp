@@ -83,8 +83,9 @@ class L2S_EXPORT CalibrationCheck {
     /// [px] The suspect level instead, for a face whose texture runs along
     /// the rows (Scores::stereo_row_texture >= row_texture_share): SGBM
     /// fills it in from its surroundings, and a wood-grain face was up to
-    /// 2 px off boards its rims placed right; in [suspect_stereo_offset_px,
-    /// failed_stereo_offset_px].
+    /// 2 px off boards its rims placed right (one 3.3 px); in
+    /// [suspect_stereo_offset_px, failed_stereo_offset_px]. Such a face's
+    /// offset alone never fails a result.
     double row_texture_stereo_offset_px = 2.5;
     double row_texture_share = 0.3;  ///< 0..1; on random scenes wood-grain faces measured 0.2-0.9, plain and low-contrast ones at most 0.2
     double suspect_plane_tilt_deg = 1.0;    ///< [deg] lidar board against the camera's, > 0
