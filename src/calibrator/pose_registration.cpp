@@ -113,10 +113,12 @@ void fit_rim_crossings(PoseReport& report, const std::vector<int>& frames, const
   }
 }
 
-/// `outliers` (the frames the pose grouping left out of a stream) and the
-/// frames of `added` whose centres the stream's clusters left out, sorted.
-std::vector<int> left_out_frames(std::vector<int> outliers, const std::vector<int>& added,
+/// The frames of stream `s` that `pose` left out: those the pose grouping
+/// left out, and those of `added` whose centres the stream's clusters left
+/// out, sorted.
+std::vector<int> left_out_frames(const PoseGrouper::Pose& pose, std::size_t s, const std::vector<int>& added,
                                  const CenterAccumulator::Result& clusters) {
+  std::vector<int> outliers = s < pose.stream_outliers.size() ? pose.stream_outliers[s] : std::vector<int>{};
   for (std::size_t k = 0; k < added.size() && k < clusters.clustered.size(); ++k)
     if (!clusters.clustered[k]) outliers.push_back(added[k]);
   std::sort(outliers.begin(), outliers.end());
@@ -134,8 +136,6 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   report.first_frame = pose.first;
   report.last_frame = pose.last;
   report.frames = pose.frames;
-  if (pose.stream_outliers.size() > 0) report.lidar_outlier_frames = pose.stream_outliers[0];
-  if (pose.stream_outliers.size() > 1) report.camera_outlier_frames = pose.stream_outliers[1];
   report.rms = std::numeric_limits<double>::quiet_NaN();
   CenterAccumulator lidar(params.accumulator), camera(params.accumulator);
   CenterAccumulator* accumulators[2] = {&lidar, &camera};
@@ -180,8 +180,8 @@ PoseReport accumulate(const std::vector<PoseGrouper::Pose>& poses, std::size_t i
   if (params.fit_lidar_rim_crossings && report.lidar_centroids.found && report.lidar_plane && evidence.target)
     fit_rim_crossings(report, lidar_frames, evidence, params, names[0], index, notes);
   report.camera_centroids = camera.estimate();
-  report.lidar_outlier_frames = left_out_frames(report.lidar_outlier_frames, added[0], report.lidar_centroids);
-  report.camera_outlier_frames = left_out_frames(report.camera_outlier_frames, added[1], report.camera_centroids);
+  report.lidar_outlier_frames = left_out_frames(pose, 0, added[0], report.lidar_centroids);
+  report.camera_outlier_frames = left_out_frames(pose, 1, added[1], report.camera_centroids);
   if (!report.lidar_centroids.found)
     report.reason = names[0] + " centres do not cluster: " + report.lidar_centroids.reason;
   else if (!report.camera_centroids.found)

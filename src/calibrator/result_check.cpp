@@ -115,9 +115,10 @@ void judge_uncertainty(CalibrationCheck::Report& report, const FitUncertainty& u
 void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& kept_frames, const StereoCamera& cameras,
                   const Target& target, const Calibrator::Params& params, const SourceRange& camera_range,
                   bool labels_fixed) {
-  std::vector<CheckFrame> cleaned;  // a copy only when some board evidence goes
-  if (has_outlier_frames(result)) cleaned = without_outlier_boards(kept_frames, result);
-  const std::vector<CheckFrame>& frames = has_outlier_frames(result) ? cleaned : kept_frames;
+  const bool boards_go = has_outlier_frames(result);  // copy the frames only then
+  const std::vector<CheckFrame> cleaned =
+      boards_go ? without_outlier_boards(kept_frames, result) : std::vector<CheckFrame>{};
+  const std::vector<CheckFrame>& frames = boards_go ? cleaned : kept_frames;
   const Registrar registrar(params.registrar);
   const CalibrationCheck check(cameras, target, params.check);
   const auto alternatives = [&] {
