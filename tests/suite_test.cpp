@@ -152,8 +152,14 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   const std::string line = to_csv_line(row);
   EXPECT_EQ(parse_csv_line(line).covered, 5);
   EXPECT_EQ(parse_csv_line(line).check_reasons, row.check_reasons);
-  // results.csv of earlier releases have no check_reasons column, and before
-  // that no covered column: they still read.
+  EXPECT_TRUE(std::isnan(parse_csv_line(line).e_lidar_centres));
+  row.e_lidar_centres = 0.0021;
+  row.e_camera_centres = 0.0123;
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).e_lidar_centres, 0.0021);
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).e_camera_centres, 0.0123);
+  // results.csv of earlier releases have no centre errors, before that no
+  // check_reasons column, and before that no covered column: they still read.
+  EXPECT_TRUE(std::isnan(parse_csv_line(line.substr(0, line.rfind(",nan,nan"))).e_camera_centres));
   const std::string without_reasons = line.substr(0, line.rfind(",\""));
   EXPECT_EQ(parse_csv_line(without_reasons).covered, 5);
   EXPECT_TRUE(parse_csv_line(without_reasons).check_reasons.empty());

@@ -165,6 +165,19 @@ StereoCamera DatasetSimulator::cameras() const { return impl_->config.rig.camera
 Eigen::Isometry3d DatasetSimulator::T_lidar_camera() const { return impl_->config.T_lidar_camera(); }
 std::vector<std::string> DatasetSimulator::warnings() const { return impl_->warnings; }
 
+DatasetSimulator::HoleTruth DatasetSimulator::true_hole_centers() const {
+  const SimulationConfig& config = impl_->config;
+  const Eigen::Isometry3d T_lidar_board = config.setting.T_cambody_lidar().inverse() * impl_->scene.T_cambody_board;
+  const Eigen::Isometry3d T_camera_lidar = config.T_lidar_camera().inverse();
+  const auto holes = config.target.hole_centers();
+  HoleTruth truth;
+  for (std::size_t h = 0; h < holes.size(); ++h) {
+    truth.lidar[h] = T_lidar_board * Eigen::Vector3d(holes[h].x(), holes[h].y(), 0.0);
+    truth.camera[h] = T_camera_lidar * truth.lidar[h];
+  }
+  return truth;
+}
+
 std::vector<std::string> simulate_dataset(const SimulationConfig& config, const std::string& out_dir,
                                           const ProgressCallback& progress) {
   const DatasetSimulator simulator(config);

@@ -65,6 +65,21 @@ namespace {
 
 using detail::evaluate;
 
+double rms_distance(const HoleCenters& found, const HoleCenters& truth) {
+  double sum = 0.0;
+  for (std::size_t h = 0; h < found.size(); ++h) sum += (found[h] - truth[h]).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(found.size()));
+}
+
+// Which branch an error comes from: each sensor's centres against the truth.
+SuiteRow with_centre_errors(SuiteRow row, const Calibrator::Result& result, const DatasetSimulator& simulator) {
+  if (!result.found) return row;
+  const DatasetSimulator::HoleTruth truth = simulator.true_hole_centers();
+  row.e_lidar_centres = rms_distance(result.lidar_centroids.centers, truth.lidar);
+  row.e_camera_centres = rms_distance(result.camera_centroids.centers, truth.camera);
+  return row;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
@@ -163,7 +178,8 @@ void add_frame(int i, const SuiteGroup& group, const GroupData& data, std::vecto
     run.seconds += seconds_since(start) + camera.at(run.cell->preset).milliseconds * 1e-3;
     if (result)
       evaluations[run.cell].push_back(
-          evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds, data.scene));
+          with_centre_errors(evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds, data.scene),
+                             *result, *run.simulator));
   }
 }
 

@@ -56,6 +56,22 @@ void write_scenes_summary(std::ostringstream& out, const std::vector<const Suite
         << format("%.0f %%", dof_share) << " / " << format("%.0f %%", run_share) << " |\n";
   }
 
+  out << "\nWhere the errors come from: each sensor's centres against the true hole centres (rms over "
+         "the four holes, in that sensor's frame; successful runs).\n\n"
+      << "| preset | lidar centres median [mm] | lidar p95 [mm] | camera centres median [mm] | camera p95 [mm] |\n"
+      << "|---|---|---|---|---|\n";
+  for (const auto& [preset, preset_rows] : by_preset) {
+    std::vector<double> lidar, camera;
+    for (const SuiteRow* row : preset_rows) {
+      if (!row->success || std::isnan(row->e_lidar_centres)) continue;
+      lidar.push_back(row->e_lidar_centres * 1e3);
+      camera.push_back(row->e_camera_centres * 1e3);
+    }
+    out << "| " << preset << " | " << format("%.2f", percentile(lidar, 50)) << " | "
+        << format("%.2f", percentile(lidar, 95)) << " | " << format("%.2f", percentile(camera, 50)) << " | "
+        << format("%.2f", percentile(camera, 95)) << " |\n";
+  }
+
   bool header = false;
   for (const auto& [preset, preset_rows] : by_preset)
     for (const SuiteRow* row : preset_rows) {

@@ -12,6 +12,7 @@
 #include <l2s/sim/stereo_renderer.hpp>
 #include <l2s/sim/stereo_rig.hpp>
 #include <l2s/camera.hpp>
+#include <l2s/geometry.hpp>
 #include <l2s/target.hpp>
 #include <l2s/types.hpp>
 
@@ -106,6 +107,14 @@ class L2S_SIM_EXPORT DatasetSimulator {
   const CleanStereo& clean_images() const;
   StereoCamera cameras() const;               ///< rig.cameras(): ROS camera_info and the image kind
   Eigen::Isometry3d T_lidar_camera() const;   ///< ground truth, config().T_lidar_camera()
+  /// The true centres of the board's holes on its front face, in the lidar
+  /// frame and in the camera frame of the result (as T_lidar_camera): what
+  /// each sensor's branch should find, to tell which one an error comes from.
+  struct HoleTruth {
+    HoleCenters lidar{};
+    HoleCenters camera{};
+  };
+  HoleTruth true_hole_centers() const;
   std::vector<std::string> warnings() const;  ///< placement failures when not strict
 
  private:

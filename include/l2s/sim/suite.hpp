@@ -6,6 +6,7 @@
 
 #include <l2s/export.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -92,6 +93,10 @@ struct L2S_SUITE_EXPORT SuiteRow {
   std::string verdict;       ///< the scene check's verdict (ok | suspect | failed), empty when not checked
   int covered = -1;          ///< DoFs (of six) whose true error the result's 95 % bound covers; -1: no valid uncertainty
   std::string check_reasons; ///< the scene check's reasons for its verdict, joined by " | " (empty when ok)
+  /// [m] rms distance of the result's lidar (camera) centres from the true hole
+  /// centres, in that sensor's frame: which branch an error comes from (NaN on failure)
+  double e_lidar_centres = std::nan("");
+  double e_camera_centres = std::nan("");
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;
