@@ -54,6 +54,17 @@ class L2S_EXPORT BoardPoseRefiner {
     bool use_right_image = true;   ///< also fit the right image (needed for depth)
     int min_samples = 40;          ///< fewer edge samples than this fails, >= 7
     double max_rms_px = 1.0;       ///< [px] converged only if the final rms is below this, > 0
+    /// Once the rims converged, fit again with the board's outer edges added
+    /// (front and back face, as with the rims): its sides lie two to three
+    /// times farther apart than the holes, so the disparity along them pins
+    /// the board's tilt, which the hole pattern alone leaves to a few
+    /// hundredths of a pixel of disparity (0.5 deg at 2.5 m with fx B = 53 px m)
+    bool fit_board_outline = true;
+    int outline_samples = 720;           ///< points on the outline per face (front, back), 16..20000
+    double outline_corner_gap = 0.03;    ///< [m] no outline samples this close to a corner, >= 0
+    double min_outline_share = 0.6;      ///< [0..1] the outline is kept only when this share of its edge samples fit (within 1 px; the rest is hidden or lost against its background), ...
+    double max_outline_rms_px = 0.35;    ///< [px] ... those fit this well, > 0
+    double max_outline_rim_growth = 1.25;  ///< ... and the rims' rms grows by at most this factor, >= 1
 
     /// Throws ParamError naming the first invalid field.
     void validate() const;
@@ -76,6 +87,23 @@ class L2S_EXPORT BoardPoseRefiner {
     /// pose: texture, not rims. A true board's face is much smoother than its
     /// rims are sharp; a patch of patterned wall taken for the board is not.
     double face_edge_fraction = 0.0;
+    /// The outline stage (Params::fit_board_outline): whether the pose and
+    /// centres are those of the rims and outline together, and if not why
+    /// (empty when the stage did not run). The other fields stay the rims'.
+    bool outline_used = false;
+    std::string outline_reason;
+    int outline_samples = 0;      ///< outline edge samples of that fit (both images, within 1 px of it)
+    double outline_rms_px = 0.0;  ///< [px] their rms normal distance
+    /// [px] The outline's edges in the right image lie this far (along x)
+    /// from where the rims' disparity puts them, fitted with the pose: the
+    /// outline then holds the board's tilt but not its range, where a board
+    /// edge against its background is found with another bias than a rim
+    double outline_disparity_bias_px = 0.0;
+    /// [m] ... and its sides (x) and its top and bottom edges (y) lie this
+    /// much farther out than target.yaml's board size puts them (likewise
+    /// fitted, for the same reason: the outline's apparent size would set the
+    /// range; and a board is rarely cut to the millimetre)
+    Eigen::Vector2d outline_dilation = Eigen::Vector2d::Zero();
   };
 
   // `Stage(Params = {})` does not compile with GCC while Params has default

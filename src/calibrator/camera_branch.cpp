@@ -292,6 +292,8 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
   if (attempt.refined->converged) {
     report.centers = attempt.refined->centers;
     report.rim_rms_px = attempt.refined->rms_px;
+    if (!attempt.refined->outline_reason.empty())
+      report.note = "board outline left out (" + attempt.refined->outline_reason + "); the rims alone kept";
   } else {
     report.note = "rim refinement did not converge (" + attempt.refined->reason + "); stereo circles kept";
   }

@@ -256,6 +256,14 @@ void describe_refinement(std::string& out, const CameraInspection& in, const Boa
            "min_samples %d]\n",
            p.search_range_px, p.final_search_range_px, r.edge_strength, p.min_edge_strength,
            p.rim_contrast_fraction, p.edge_noise_factor, p.max_rms_px, p.min_samples);
+    if (r.outline_used)
+      append(out,
+             "  board outline    fitted with the rims: rms %.2f px over %d samples; its sides %+.1f mm and top "
+             "and bottom %+.1f mm out of target.yaml's size, right view %+.2f px\n",
+             r.outline_rms_px, r.outline_samples, 1e3 * r.outline_dilation.x(), 1e3 * r.outline_dilation.y(),
+             r.outline_disparity_bias_px);
+    else if (!r.outline_reason.empty())
+      append(out, "  board outline    left out (%s); the pose is the rims' alone\n", r.outline_reason.c_str());
     const Eigen::Isometry3d& T = r.converged ? r.T_camera_board : *in.T_camera_board_initial;
     const Eigen::Vector3d t = T.translation();
     const Eigen::Vector3d z = T.linear().col(2);

@@ -161,6 +161,12 @@ void visit(V& v, BoardPoseRefiner::Params& p) {
   v.field("use_right_image", p.use_right_image);
   v.field("min_samples", p.min_samples);
   v.field("max_rms_px", p.max_rms_px);
+  v.field("fit_board_outline", p.fit_board_outline);
+  v.field("outline_samples", p.outline_samples);
+  v.field("outline_corner_gap", p.outline_corner_gap);
+  v.field("min_outline_share", p.min_outline_share);
+  v.field("max_outline_rms_px", p.max_outline_rms_px);
+  v.field("max_outline_rim_growth", p.max_outline_rim_growth);
 }
 
 template <class V>

@@ -16,8 +16,9 @@
 //    fail, for rims that differ from the face in hue more than in brightness.
 // Using the right image too gives each rim a disparity, i.e. the depth and
 // tilt that a single view hardly observes.
-// This file holds the fit and the driver; the rim model is in rim_model.hpp,
-// the edge search in rim_edge_search.hpp.
+// This file holds the driver; the rounds of search and fit are in
+// rim_alignment.hpp, the rim model in rim_model.hpp, the edge search in
+// rim_edge_search.hpp.
 
 #include <l2s/board_pose_refiner.hpp>
 
@@ -25,11 +26,13 @@
 
 #include "camera/cv_image.hpp"
 #include "camera/noise_level.hpp"
+#include "camera/rim_alignment.hpp"
 #include "camera/rim_edge_search.hpp"
 #include "camera/rim_model.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -40,202 +43,18 @@
 namespace l2s {
 namespace {
 
+using detail::Alignment;
 using detail::EdgeSearch;
+using detail::OutlineNuisance;
+using detail::SampleFit;
+using detail::fit_of;
 using detail::Rims;
 using detail::Sample;
 using detail::View;
 using detail::rims_of;
 using detail::views_of;
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
 using Params = BoardPoseRefiner::Params;
-
-/// One left se(3) increment of T: rotation w [rad] about the camera origin, then translation v [m].
-Eigen::Isometry3d apply_increment(const Eigen::Isometry3d& T, const Eigen::Vector3d& v, const Eigen::Vector3d& w) {
-  const Eigen::Matrix3d R_delta =
-      w.norm() > 0.0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
-                     : Eigen::Matrix3d::Identity();
-  Eigen::Isometry3d next = Eigen::Isometry3d::Identity();
-  next.linear() = R_delta * T.linear();
-  next.translation() = R_delta * T.translation() + v;
-  return next;
-}
-
-/// The Gauss-Newton increment (v, omega) for the signed normal distances of
-/// the samples at pose T, Huber-weighted; `rms_px` gets their rms.
-Eigen::Matrix<double, 6, 1> gauss_newton_delta(const std::vector<Sample>& samples, const std::vector<View>& views,
-                                               const Eigen::Isometry3d& T, double huber_px, double& rms_px) {
-  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
-  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
-  double sum_sq = 0.0, sum_w = 0.0;
-  for (const Sample& sample : samples) {
-    const Eigen::Vector3d p = T * sample.X_board;
-    Eigen::Vector2d u;
-    Eigen::Matrix<double, 2, 3> J;
-    if (!views[sample.view].project(p, u, &J)) continue;
-    const double residual = sample.normal.dot(u - sample.observed);
-    Eigen::Matrix<double, 3, 6> dp;  // d(exp(delta) p) / d(v, omega) at 0
-    dp << Eigen::Matrix3d::Identity(), -skew(p);
-    const Eigen::Matrix<double, 1, 6> row = sample.normal.transpose() * J * dp;
-    const double w = sample.weight * (std::abs(residual) <= huber_px ? 1.0 : huber_px / std::abs(residual));
-    H += w * row.transpose() * row;
-    g += w * row.transpose() * residual;
-    if (!sample.rim) continue;
-    sum_sq += residual * residual;
-    sum_w += 1.0;
-  }
-  rms_px = std::sqrt(sum_sq / std::max(sum_w, 1.0));
-  H.diagonal() *= 1.0 + 1e-9;  // keeps LDLT well defined if an axis is barely observed
-  return -H.ldlt().solve(g);
-}
-
-/// How far one round moved the pose.
-struct RoundMotion {
-  Eigen::Vector3d rotation = Eigen::Vector3d::Zero();     // [rad] sum of the steps' omega
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  // [m] sum of the steps' v
-};
-
-/// The fit half of a round: Gauss-Newton steps with the found edges held
-/// fixed. Moves T; false when an update is not finite (T is then the pose
-/// before that step).
-bool fit_pose(const std::vector<Sample>& samples, const std::vector<View>& views, const Params& params,
-              Eigen::Isometry3d& T, RoundMotion& motion, double& rms_px) {
-  for (int step = 0; step < params.gauss_newton_steps; ++step) {
-    const Eigen::Matrix<double, 6, 1> delta = gauss_newton_delta(samples, views, T, params.huber_px, rms_px);
-    if (!delta.allFinite()) return false;
-    const Eigen::Vector3d v = delta.head<3>(), w = delta.tail<3>();
-    T = apply_increment(T, v, w);
-    motion.rotation += w;
-    motion.translation += v;
-  }
-  return true;
-}
-
-/// [px] largest image motion of a used sample between two poses.
-double largest_image_step(const std::vector<Sample>& samples, const std::vector<View>& views,
-                          const Eigen::Isometry3d& T_before, const Eigen::Isometry3d& T_after) {
-  double step_px = 0.0;
-  for (const Sample& sample : samples) {
-    Eigen::Vector2d before, after;
-    if (views[sample.view].project(T_before * sample.X_board, before, nullptr) &&
-        views[sample.view].project(T_after * sample.X_board, after, nullptr))
-      step_px = std::max(step_px, (after - before).norm());
-  }
-  return step_px;
-}
-
-/// Why the refinement is not trusted, empty when it is.
-std::string failure_reason(const BoardPoseRefiner::Result& result, bool settled, const Params& params) {
-  std::ostringstream reason;
-  if (!settled) {
-    reason << "not converged after " << result.iterations << " rounds (last step " << result.last_step_px
-           << " px, rms " << result.rms_px << " px, " << std::lround(100.0 * result.edge_fraction)
-           << "% of rim samples on an edge)";
-  } else if (result.rms_px > params.max_rms_px) {
-    reason << "edge rms " << result.rms_px << " px exceeds " << params.max_rms_px << " px";
-  }
-  return reason.str();
-}
-
-std::string too_few_samples(int samples, int min_samples) {
-  std::ostringstream reason;
-  reason << "only " << samples << " rim edge samples found (need " << min_samples << ")";
-  return reason.str();
-}
-
-/// The second convergence test. The se(3) test (converged_rotation,
-/// converged_translation) is strict: the edge positions are re-sampled each
-/// round, so their sub-pixel interpolation bias moves with the pose and the
-/// rounds often settle by a slowly damped oscillation (a few 1e-4 rad about
-/// the camera, i.e. ~0.01 px on the rims, at rms ~0.08 px) that the round
-/// limit cuts off. What matters is how far the round moved the rims in the
-/// images: once that step is shrinking and a small fraction of the edge
-/// noise (rms), further rounds cannot change the pose beyond its own
-/// uncertainty. Only with the final search range (selection locked), and
-/// only when most searched rim samples found a strong edge: on an image
-/// without the board, wall texture yields some edges that a pose can
-/// settle on too, but not along most of the rims.
-bool settled_in_image(double step_px, double previous_step_px, bool locked, const BoardPoseRefiner::Result& result,
-                      const Params& params) {
-  return locked && step_px < previous_step_px && step_px <= params.converged_step_rms_fraction * result.rms_px &&
-         result.edge_fraction >= params.min_edge_fraction;
-}
-
-/// The search-and-fit rounds from an initial pose. The search range halves
-/// each round down to the final one, which then locks the sample selection
-/// (EdgeSearch).
-class Alignment {
- public:
-  /// `anchors`: known points fitted with the rims in every round (marker corners of a mono camera).
-  Alignment(const Params& params, const Rims& rims, const std::vector<View>& views, const std::vector<Sample>& anchors)
-      : params_(params), rims_(rims), views_(views), anchors_(anchors), edges_(params, rims, views) {}
-
-  /// Fills `result` (reason empty: converged) with the pose the rounds end at.
-  void run(const Eigen::Isometry3d& T_camera_board, BoardPoseRefiner::Result& result) {
-    Eigen::Isometry3d T = T_camera_board;
-    for (int round = 0; round < params_.max_iterations && !settled_; ++round)
-      if (!run_round(round, T, result)) {
-        result.T_camera_board = T;
-        return;
-      }
-    result.T_camera_board = T;
-    for (int h = 0; h < 4; ++h)
-      result.centers[h] = T * Eigen::Vector3d(rims_.centers[h].x(), rims_.centers[h].y(), 0.0);
-    result.reason = failure_reason(result, settled_, params_);
-  }
-
- private:
-  /// One search and fit; false when the round fails (result.reason says why).
-  bool run_round(int round, Eigen::Isometry3d& T, BoardPoseRefiner::Result& result) {
-    result.iterations = round + 1;
-    const double range = std::max(params_.final_search_range_px, params_.search_range_px / (1 << std::min(round, 20)));
-    const bool locked = lock_selection_;
-    lock_selection_ = range <= params_.final_search_range_px;
-    const int searched = edges_.search(T, range, locked, samples_);
-    result.samples = static_cast<int>(samples_.size());
-    // Share of the rim that shows an edge. Once the selection is locked, the
-    // samples that found no edge are no longer searched, so the base stays the
-    // count of the round that chose them.
-    if (!locked) searched_at_selection_ = searched;
-    result.edge_fraction =
-        searched_at_selection_ > 0 ? static_cast<double>(result.samples) / searched_at_selection_ : 0.0;
-    if (result.samples < params_.min_samples) {
-      result.reason = too_few_samples(result.samples, params_.min_samples);
-      return false;
-    }
-
-    samples_.insert(samples_.end(), anchors_.begin(), anchors_.end());
-    const Eigen::Isometry3d T_round_start = T;
-    RoundMotion motion;
-    if (!fit_pose(samples_, views_, params_, T, motion, result.rms_px)) {
-      result.reason = "pose update is not finite (degenerate rim samples)";
-      return false;
-    }
-    settled_ = motion.rotation.norm() < params_.converged_rotation &&
-               motion.translation.norm() < params_.converged_translation;
-    const double step_px = largest_image_step(samples_, views_, T_round_start, T);
-    if (!settled_ && settled_in_image(step_px, previous_step_px_, locked, result, params_)) settled_ = true;
-    previous_step_px_ = step_px;
-    result.last_step_px = step_px;
-    return true;
-  }
-
-  const Params& params_;
-  const Rims& rims_;
-  const std::vector<View>& views_;
-  const std::vector<Sample>& anchors_;
-  EdgeSearch edges_;
-  std::vector<Sample> samples_;  // the last round's edges (and the anchors)
-  bool settled_ = false;
-  bool lock_selection_ = false;  // the next round keeps this round's sample selection
-  double previous_step_px_ = std::numeric_limits<double>::infinity();
-  int searched_at_selection_ = 0;  // samples searched in the round that chose the selection
-};
 
 /// [gray levels / px] Sigma of the Sobel / 8 response to the noise of the
 /// noisier image (its noisiest channel): white noise of sigma s gives
@@ -299,6 +118,7 @@ double face_edge_fraction(const Params& params, const Target& target, const std:
       control.points.erase(control.points.begin() + static_cast<std::ptrdiff_t>(k));
       control.tangents.erase(control.tangents.begin() + static_cast<std::ptrdiff_t>(k));
       control.hole.erase(control.hole.begin() + static_cast<std::ptrdiff_t>(k));
+      control.material.erase(control.material.begin() + static_cast<std::ptrdiff_t>(k));
     }
   EdgeSearch search(params, control, views);
   std::vector<Sample> samples;
@@ -349,6 +169,55 @@ BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& vi
   return retry.converged ? retry : first;
 }
 
+/// The second stage (Params::fit_board_outline): from the rims' pose, the
+/// rims and the board's outer edges fitted together, in the final search
+/// range with the first stage's edge rules, the outline with its own
+/// nuisance (OutlineNuisance) so that it holds the tilt, not the range.
+/// Kept only when most of the outline agrees with the rims (the share and
+/// rms of its inliers, the rims' rms grown by at most max_outline_rim_growth):
+/// an outline mostly hidden or lost against its background would otherwise
+/// pull the holes off their rims.
+void fit_with_outline(const Params& params, const Target& target, const Rims& rims, const std::vector<Sample>& anchors,
+                      const StereoCamera& camera, const Image& left, const Image& right, const cv::Mat& pixels_left,
+                      const cv::Mat& pixels_right, BoardPoseRefiner::Result& result) {
+  const Rims all = detail::with_outline(rims, target, params.outline_samples, params.outline_corner_gap);
+  const std::vector<View> views =
+      views_of(camera, left, right, pixels_left, pixels_right, all, result.T_camera_board, params);
+  if (views.empty()) return;
+  Params p = params;
+  p.search_range_px = p.final_search_range_px;
+  p.first_edge_from_board = result.edges_from_board_side;
+  p.min_edge_strength = result.edge_strength;
+  BoardPoseRefiner::Result both;
+  Alignment alignment(p, all, views, anchors);
+  alignment.free_outline_nuisance();
+  alignment.run(result.T_camera_board, both);
+  const OutlineNuisance& nuisance = alignment.outline_nuisance();
+  const SampleFit outline = fit_of(alignment.samples(), views, both.T_camera_board, nuisance, true);
+  const SampleFit rims_fit = fit_of(alignment.samples(), views, both.T_camera_board, nuisance, false);
+  result.outline_samples = outline.inliers;
+  result.outline_rms_px = outline.rms_px;
+  result.outline_disparity_bias_px = nuisance.disparity_px;
+  result.outline_dilation = nuisance.dilation;
+  std::ostringstream why;
+  why.precision(3);
+  if (!both.reason.empty())
+    why << both.reason;
+  else if (outline.inliers < params.min_samples || outline.inlier_share < params.min_outline_share)
+    why << "only " << outline.inliers << " outline edge samples fit (" << std::lround(100.0 * outline.inlier_share)
+        << " % of those found; need " << params.min_samples << " and " << std::lround(100.0 * params.min_outline_share)
+        << " %)";
+  else if (!(outline.rms_px <= params.max_outline_rms_px))
+    why << "outline edge rms " << outline.rms_px << " px exceeds " << params.max_outline_rms_px << " px";
+  else if (!(rims_fit.rms_px <= result.rms_px * params.max_outline_rim_growth))
+    why << "the outline moves the rims: their rms " << result.rms_px << " -> " << rims_fit.rms_px << " px";
+  result.outline_reason = why.str();
+  if (!result.outline_reason.empty()) return;
+  result.outline_used = true;
+  result.T_camera_board = both.T_camera_board;
+  result.centers = both.centers;
+}
+
 }  // namespace
 
 void BoardPoseRefiner::Params::validate() const {
@@ -374,6 +243,11 @@ void BoardPoseRefiner::Params::validate() const {
   if (!(min_edge_fraction >= 0.0 && min_edge_fraction <= 1.0)) throw ParamError("min_edge_fraction", "must be 0..1");
   if (min_samples < 7) throw ParamError("min_samples", "must be >= 7");
   if (!(max_rms_px > 0.0)) throw ParamError("max_rms_px", "must be > 0");
+  if (outline_samples < 16 || outline_samples > 20000) throw ParamError("outline_samples", "must be 16..20000");
+  if (!(outline_corner_gap >= 0.0)) throw ParamError("outline_corner_gap", "must be >= 0");
+  if (!(max_outline_rms_px > 0.0)) throw ParamError("max_outline_rms_px", "must be > 0");
+  if (!(max_outline_rim_growth >= 1.0)) throw ParamError("max_outline_rim_growth", "must be >= 1");
+  if (!(min_outline_share >= 0.0 && min_outline_share <= 1.0)) throw ParamError("min_outline_share", "must be 0..1");
 }
 
 BoardPoseRefiner::BoardPoseRefiner(Params params) : params_(params) { params_.validate(); }
@@ -411,22 +285,30 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine_with_anchors(const Image& left
     return result;
   }
   result = align(params_, views, rims, anchors, T_camera_board, gray_left, gray_right);
+  const cv::Mat* pixels_left = &gray_left;
+  const cv::Mat* pixels_right = &gray_right;
   // A rim can differ from the face in hue more than in brightness (a gray
   // board before red bricks): when the gray images fail, colour ones are
   // tried, each sample taking its strongest channel. Only then, as that
   // costs three gradients and lets more texture compete with the rims.
+  cv::Mat colour_left, colour_right;
   if (!result.converged && left.channels == 3 && right.channels == 3) {
-    const cv::Mat colour_left = detail::pixel_mat(left, "left"), colour_right = detail::pixel_mat(right, "right");
+    colour_left = detail::pixel_mat(left, "left");
+    colour_right = detail::pixel_mat(right, "right");
     std::vector<View> colour = views_of(camera, left, right, colour_left, colour_right, rims, T_camera_board, params_);
     Result in_colour = align(params_, colour, rims, anchors, T_camera_board, colour_left, colour_right);
     if (in_colour.converged) {
       result = std::move(in_colour);
       views = std::move(colour);
+      pixels_left = &colour_left;
+      pixels_right = &colour_right;
     }
   }
   Params used = params_;
   used.min_edge_strength = result.edge_strength;
   result.face_edge_fraction = face_edge_fraction(used, target, views, result.T_camera_board);
+  if (result.converged && params_.fit_board_outline)
+    fit_with_outline(params_, target, rims, anchors, camera, left, right, *pixels_left, *pixels_right, result);
   return result;
 }
 

@@ -37,14 +37,17 @@ int EdgeSearch::search(const Eigen::Isometry3d& T, double range, bool locked, st
       char& use = chosen_[v * rims_.points.size() + k];
       if (locked && !use) continue;
       use = 0;
-      if (!locked && hidden_by_wall(rims_, eye, X, rims_.hole[k])) continue;
+      if (!locked && hidden_from(rims_, eye, k)) continue;
       RimPixel at;
       double along = 0.0;  // [px] edge position on the search line
       const Outcome outcome = find_edge(view, T, k, locked, at, along);
       if (outcome != Outcome::NotSearched) ++searched;
       if (outcome != Outcome::Edge) continue;
       use = 1;
-      samples.push_back({static_cast<int>(v), X, at.normal, at.u + along * at.normal});
+      Sample sample{static_cast<int>(v), X, at.normal, at.u + along * at.normal};
+      sample.outline = rims_.hole[k] == Rims::kOutline;
+      if (sample.outline) sample.outward << -rims_.material[k], 0.0;
+      samples.push_back(sample);
     }
   }
   return searched;
@@ -64,10 +67,11 @@ EdgeSearch::Outcome EdgeSearch::find_edge(const View& view, const Eigen::Isometr
 int EdgeSearch::board_side_of(const View& view, const Eigen::Isometry3d& T, std::size_t k,
                               const RimPixel& at) const {
   const Eigen::Vector3d& X = rims_.points[k];
-  const Eigen::Vector2d radial = (X.head<2>() - rims_.centers[rims_.hole[k]]).normalized();
-  // The face lies outside the front rim; the wall of a back rim towards the front rim.
+  const Eigen::Vector2d& into = rims_.material[k];
+  // The face lies beside a front rim (outside a hole, inside the outline);
+  // the wall (or side face) of a back rim towards the front rim.
   const Eigen::Vector3d toward =
-      X.z() == 0.0 ? Eigen::Vector3d(X.x() + 1e-3 * radial.x(), X.y() + 1e-3 * radial.y(), 0.0)
+      X.z() == 0.0 ? Eigen::Vector3d(X.x() + 1e-3 * into.x(), X.y() + 1e-3 * into.y(), 0.0)
                    : Eigen::Vector3d(X.x(), X.y(), 0.0);
   Eigen::Vector2d u;
   if (!view.project(T * toward, u, nullptr)) return 0;

@@ -41,6 +41,7 @@ Rims rims_of(const Target& target, int samples_per_rim) {
         rims.points.emplace_back(rims.centers[h].x() + rims.radius * std::cos(a),
                                  rims.centers[h].y() + rims.radius * std::sin(a), z);
         rims.tangents.emplace_back(-std::sin(a), std::cos(a), 0.0);
+        rims.material.emplace_back(std::cos(a), std::sin(a));  // the face lies outside a hole's rim
         rims.hole.push_back(h);
       }
   return rims;
@@ -83,11 +84,45 @@ std::vector<View> views_of(const StereoCamera& camera, const Image& left, const 
   return views;
 }
 
-bool hidden_by_wall(const Rims& rims, const Eigen::Vector3d& eye, const Eigen::Vector3d& X, int hole) {
+Rims with_outline(Rims rims, const Target& target, int samples, double corner_gap) {
+  const double w = 0.5 * target.board_width, h = 0.5 * target.board_height;
+  const double spacing = 4.0 * (w + h) / std::max(samples, 4);
+  // Each edge from corner to corner: start, direction, outward normal, length.
+  struct Edge {
+    Eigen::Vector2d start, direction, outward;
+    double length;
+  };
+  const Edge edges[] = {{{-w, h}, {1, 0}, {0, 1}, 2 * w},
+                        {{w, h}, {0, -1}, {1, 0}, 2 * h},
+                        {{w, -h}, {-1, 0}, {0, -1}, 2 * w},
+                        {{-w, -h}, {0, 1}, {-1, 0}, 2 * h}};
+  for (const double z : {0.0, -rims.thickness})
+    for (const Edge& edge : edges) {
+      const double usable = edge.length - 2.0 * corner_gap;
+      const int n = static_cast<int>(std::floor(usable / spacing));
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Vector2d p = edge.start + (corner_gap + (k + 0.5) * usable / n) * edge.direction;
+        rims.points.emplace_back(p.x(), p.y(), z);
+        rims.tangents.emplace_back(edge.direction.x(), edge.direction.y(), 0.0);
+        rims.material.push_back(-edge.outward);
+        rims.hole.push_back(Rims::kOutline);
+      }
+    }
+  return rims;
+}
+
+bool hidden_from(const Rims& rims, const Eigen::Vector3d& eye, std::size_t k) {
+  const Eigen::Vector3d& X = rims.points[k];
   const double other_z = X.z() == 0.0 ? -rims.thickness : 0.0;
   const double s = (other_z - eye.z()) / (X.z() - eye.z());
-  const Eigen::Vector3d Q = eye + s * (X - eye);
-  return (Q.head<2>() - rims.centers[hole]).norm() > rims.radius;
+  const Eigen::Vector2d Q = (eye + s * (X - eye)).head<2>();  // the line of sight on the other face's plane
+  if (rims.hole[k] != Rims::kOutline) return (Q - rims.centers[rims.hole[k]]).norm() > rims.radius;
+  // As with a hole: an edge counts where the board borders what lies behind
+  // it. While a side face is in view (the line of sight through its front
+  // edge enters the board's side), the front edge borders that face and the
+  // back edge is the silhouette; otherwise the back edge is hidden.
+  const Eigen::Vector2d outward = -rims.material[k];
+  return outward.dot(Q) < outward.dot(X.head<2>());
 }
 
 }  // namespace l2s::detail

@@ -87,21 +87,37 @@ struct Sample {
   Eigen::Vector2d observed;  // [px] edge position found on the search line
   double weight = 1.0;       // an anchor's weight relative to one rim sample
   bool rim = true;           // false: an anchor (not in the edge rms)
+  bool outline = false;      // on the board's outer edge, not a hole's rim
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();  // an outline sample: away from the board, board frame
 };
 
 /// The hole rims in the board frame: each hole's front (z = 0) and back
-/// (z = -thickness) circle, sampled evenly, with the tangent at each sample.
+/// (z = -thickness) circle, sampled evenly, with the tangent at each sample;
+/// optionally (with_outline) the board's outer edges too, front and back.
 struct Rims {
-  std::vector<Eigen::Vector3d> points;    // [m] board frame, [hole][rim][theta]
+  std::vector<Eigen::Vector3d> points;    // [m] board frame, [hole][rim][theta], then the outline's
   std::vector<Eigen::Vector3d> tangents;  // unit, board frame
-  std::vector<int> hole;                  // the hole of each point
+  std::vector<Eigen::Vector2d> material;  // unit, board plane: from the point into the board's material
+  std::vector<int> hole;                  // the hole of each point; kOutline for the board's outer edges
   std::array<Eigen::Vector2d, 4> centers;  // [m] hole centres, board frame
   double radius = 0.0;     // [m]
   double thickness = 0.0;  // [m]
+
+  static constexpr int kOutline = -1;
 };
 
 /// The rims of `target`'s holes, `samples_per_rim` points on each circle.
 Rims rims_of(const Target& target, int samples_per_rim);
+
+/// `rims` and the board's four outer edges, front (z = 0) and back, about
+/// `samples` points per face spread evenly along the perimeter, none within
+/// `corner_gap` [m] of a corner (where two edges meet, and real boards are
+/// often rounded).
+Rims with_outline(Rims rims, const Target& target, int samples, double corner_gap);
+
+/// True when rim or outline point k cannot be seen from `eye` (board frame):
+/// a hole's wall hides it, or, on the outline's back edge, the board itself.
+bool hidden_from(const Rims& rims, const Eigen::Vector3d& eye, std::size_t k);
 
 /// The left view (and the right one, with use_right_image), each with the
 /// gradient of the board's neighbourhood only: the whole image's would cost
@@ -110,9 +126,6 @@ std::vector<View> views_of(const StereoCamera& camera, const Image& left, const 
                            const cv::Mat& pixels_left, const cv::Mat& pixels_right, const Rims& rims,
                            const Eigen::Isometry3d& T_camera_board, const BoardPoseRefiner::Params& params);
 
-/// True when the line of sight from `eye` through rim point X (board frame)
-/// passes outside the hole's other rim circle: the hole's wall hides X.
-bool hidden_by_wall(const Rims& rims, const Eigen::Vector3d& eye, const Eigen::Vector3d& X, int hole);
 
 /// Where a rim point projects in a view and the image normal of its rim there.
 struct RimPixel {
