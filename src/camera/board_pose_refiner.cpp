@@ -30,9 +30,7 @@
 #include "camera/rim_edge_search.hpp"
 #include "camera/rim_model.hpp"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
