@@ -71,13 +71,15 @@ void BM_BoardPoseRefiner_Refine(benchmark::State& state) {
   Eigen::Isometry3d start = f.scene.T_camera_board;
   start.linear() = Eigen::AngleAxisd(0.026, Eigen::Vector3d(0.7, 0.6, 0.2).normalized()) * start.linear();
   start.translation() += Eigen::Vector3d(0.003, -0.002, 0.0035);
-  const l2s::BoardPoseRefiner refiner;
+  l2s::BoardPoseRefiner::Params params;
+  params.fit_board_outline = state.range(0) != 0;  // /0: the hole rims alone, /1: with the board's outline (default)
+  const l2s::BoardPoseRefiner refiner(params);
   for (auto _ : state) {
     const auto result = refiner.refine(f.pair.left, f.pair.right, f.scene.camera, f.scene.target, start);
     benchmark::DoNotOptimize(result.T_camera_board);
   }
 }
-BENCHMARK(BM_BoardPoseRefiner_Refine)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BoardPoseRefiner_Refine)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_Registrar_Estimate(benchmark::State& state) {
   const l2s::HoleCenters camera = {Eigen::Vector3d(-0.25, -0.2, 3.0), Eigen::Vector3d(0.25, -0.2, 3.0),
