@@ -196,6 +196,50 @@ TEST(CheckVerdict, MisalignmentCountsOnlyBeyondThePeaksWidth) {
   EXPECT_EQ(judged(0.037), Verdict::Suspect);    // 2.1 deg: beyond it
 }
 
+// Image edges drawn by texture: random scene 1468088629 (bricks 0.8 m behind
+// a low-contrast board, fx 306) gave a result 5.7 mm / 0.17 deg off whose
+// edges aligned best 7.8 px (1.46 deg) away, on the mortar. The board, which
+// agrees with the result, would not agree there: its hole centres would lie
+// 9.2 mm from the camera's. Where the board agrees with neither, or with
+// both, or the edges off the board point elsewhere (an unsynchronised
+// board), or the depths off the board agree better there, the misalignment
+// counts.
+TEST(CheckVerdict, MisalignmentDoesNotCountWhereTheBoardRefutesIt) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](double centres_here, double centres_there, double scene_deg = 0.2,
+                          double depth_tilt_there_deg = 0.3) {
+    CalibrationCheck::Report report = agreeing();
+    report.misalignment = 1.46 * M_PI / 180;
+    report.misalignment_px = 7.8;
+    report.misalignment_gain = 0.19;
+    report.optimum_edge_score = 0.64;
+    report.scores.center_offset = centres_here;
+    report.scores.depth_tilt = 0.27 * M_PI / 180;
+    report.scores.depth_tilt_sigma = 0.05 * M_PI / 180;
+    CalibrationCheck::Scores there = report.scores;
+    there.center_offset = centres_there;
+    there.depth_tilt = depth_tilt_there_deg * M_PI / 180;
+    report.optimum_board = there;
+    report.scene_misalignment = scene_deg * M_PI / 180;
+    detail::judge(report, params, 306.0);
+    return report;
+  };
+  const auto names_misalignment = [](const CalibrationCheck::Report& report) {
+    for (const std::string& reason : report.reasons)
+      if (reason.find("align best with the image 7.8 px") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_EQ(judged(0.0002, 0.0092).verdict, Verdict::Ok);
+  EXPECT_TRUE(names_misalignment(judged(0.0002, 0.0092, 1.5)));  // the scene's edges point elsewhere
+  // The depths off the board favour the optimum (random scene 530559979, a
+  // result 1.7 deg off: lidar depths tilted 1.67 deg against the stereo's).
+  EXPECT_TRUE(names_misalignment(judged(0.0002, 0.0092, 0.2, 0.0)));
+  const auto both_agree = judged(0.0001, 0.002);
+  EXPECT_EQ(both_agree.verdict, Verdict::Suspect);
+  EXPECT_TRUE(names_misalignment(both_agree));
+  EXPECT_NE(judged(0.03, 0.047).verdict, Verdict::Ok);  // the board vouches for neither
+}
+
 // A roll of the best alignment about the optical axis counts only where
 // many edges land there: a good random-scene result (2.5 mm, 0.04 deg) had
 // a sharp roll peak 1.2 deg away where 17 % of its edges scored.

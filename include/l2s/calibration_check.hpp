@@ -29,6 +29,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,20 @@ class L2S_EXPORT CalibrationCheck {
     /// result was 0.38 deg "misaligned" at 0.67 widths; wrong ones were
     /// 1.7-6.6 widths away), >= 0.
     double min_misalignment_widths = 1.0;
+    /// ... and not where the board refutes that alignment and nothing else
+    /// favours it: there its lidar hole centres would lie more than this
+    /// from the camera's holes in the board plane, while at the transform
+    /// they lie within a third of it (or the outline or plane would turn
+    /// suspect there), and neither the edges off the board
+    /// (Report::scene_misalignment, which an unsynchronised board makes)
+    /// nor the lidar depths off the board (Scores::depth_tilt) agree better
+    /// there. Texture then drew the edges: random scene 1468088629, bricks
+    /// 0.8 m behind a low-contrast board, a result 0.17 deg off whose edges
+    /// aligned best 1.5 deg away, with its hole centres 9.2 mm off there
+    /// (0.2 mm at the result). A tilted camera board moves the centres at
+    /// the truth too (530559979, 1.7 deg off: 11 mm there), which the depth
+    /// guard catches, [m] > 0.
+    double refuting_center_offset = 0.006;
     /// Share of the lidar returns of the scene whose depth agrees with
     /// stereo below which the result is suspect / failed: a right transform
     /// has most agree (0.75-1 on the randomised scenes), a wrong one puts
@@ -227,6 +242,11 @@ class L2S_EXPORT CalibrationCheck {
     /// transform and where its optimum lies is noise.
     double misalignment_gain = 0.0;
     double optimum_edge_score = 0.0;   ///< edge score at that best alignment, 0..1
+    /// The board's measurements (Scores' board fields) at that best
+    /// alignment, when there are board frames. Where the board agrees with
+    /// this transform but would not agree there, the edges were drawn by
+    /// texture (a repetitive background), and the misalignment does not count.
+    std::optional<Scores> optimum_board;
     double median_depth = 0.0;         ///< [m] of the scored lidar edges, camera frame
     std::vector<Alternative> alternatives;
     int preferred = -1;      ///< an alternative the scene supports clearly better (index), else -1

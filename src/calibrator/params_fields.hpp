@@ -254,6 +254,7 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("min_misalignment_gain", p.min_misalignment_gain);
   v.field("min_optimum_edge_score", p.min_optimum_edge_score);
   v.field("min_misalignment_widths", p.min_misalignment_widths);
+  v.field("refuting_center_offset", p.refuting_center_offset);
   v.field("min_roll_prominence", p.min_roll_prominence);
   v.field("suspect_depth_agreement", p.suspect_depth_agreement);
   v.field("failed_depth_agreement", p.failed_depth_agreement);

@@ -67,6 +67,17 @@ void emit_quality(YAML::Emitter& out, const Calibrator::Result& result) {
   out << YAML::Key << "alignment_gain" << YAML::Value << format_number(q.alignment_gain);
   out << YAML::Key << "misalignment_gain" << YAML::Value << format_number(q.misalignment_gain);
   out << YAML::Key << "optimum_edge_score" << YAML::Value << format_number(q.optimum_edge_score);
+  if (q.optimum_board) {
+    // The board at the edges' best alignment: far worse than in `scores`,
+    // the edges were drawn there by texture, and the misalignment does not count.
+    const CalibrationCheck::Scores& b = *q.optimum_board;
+    out << YAML::Key << "optimum_board" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "center_offset_m" << YAML::Value << format_number(b.center_offset);
+    out << YAML::Key << "outline_px" << YAML::Value << format_number(b.outline_px);
+    out << YAML::Key << "outside_fraction" << YAML::Value << format_number(b.outside_fraction);
+    out << YAML::Key << "plane_tilt_deg" << YAML::Value << format_number(b.plane_tilt * 180.0 / M_PI);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "edge_median_depth_m" << YAML::Value << format_number(q.median_depth);
   out << YAML::Key << "scores" << YAML::Value << YAML::BeginMap;
   emit_scores(out, q.scores);

@@ -115,6 +115,7 @@ void CalibrationCheck::Params::validate() const {
     throw ParamError("suspect_outside_fraction", "must be in (0, 1)");
   ordered(suspect_outside_fraction, failed_outside_fraction, "failed_outside_fraction");
   positive(suspect_center_offset, "suspect_center_offset");
+  positive(refuting_center_offset, "refuting_center_offset");
   ordered(suspect_center_offset, failed_center_offset, "failed_center_offset");
   if (!(suspect_alignment_gain > 0.0 && suspect_alignment_gain < 1.0))
     throw ParamError("suspect_alignment_gain", "must be in (0, 1)");
@@ -193,6 +194,12 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
     report.optimum_edge_score = alignment.optimum_score;
     if (alignment.optimum_score > 0.0)
       report.misalignment_gain = std::max(0.0, 1.0 - report.scores.edge_score / alignment.optimum_score);
+    if (report.board_frames > 0) {
+      CalibrationCheck::Scores there;
+      scorer.board(alignment.T_camera_lidar_best, there);
+      scorer.depth(alignment.T_camera_lidar_best, there);
+      report.optimum_board = there;
+    }
     if (report.scores.scene_edge_points >= params_.min_scene_edge_points)
       report.scene_misalignment = detail::scene_motion(scorer, T_camera_lidar, view, depth, params_) / view.fx;
   }

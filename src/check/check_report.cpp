@@ -73,6 +73,10 @@ std::string describe(const CalibrationCheck::Report& report) {
   if (report.scores.edge_points > 0) {
     out << line("alignment  best near this transform %.1f px away, edge score %.3f there (%.0f %% better)\n",
                 report.misalignment_px, report.optimum_edge_score, 100.0 * report.misalignment_gain);
+    if (report.optimum_board)
+      out << line("           the board there: hole centres %.1f mm off, outline %.1f px, %.0f %% of returns outside\n",
+                  report.optimum_board->center_offset * 1e3, report.optimum_board->outline_px,
+                  100.0 * report.optimum_board->outside_fraction);
     out << line("peaks      edges at median depth %.2f m; offset / half width at half height:\n", report.median_depth);
     for (const auto& peak : report.peaks) {
       const double unit = peak.rotation ? 1.0 / kDeg : 100.0;
