@@ -242,10 +242,12 @@ class L2S_EXPORT CalibrationCheck {
     /// transform and where its optimum lies is noise.
     double misalignment_gain = 0.0;
     double optimum_edge_score = 0.0;   ///< edge score at that best alignment, 0..1
-    /// The board's measurements (Scores' board fields) at that best
-    /// alignment, when there are board frames. Where the board agrees with
-    /// this transform but would not agree there, the edges were drawn by
-    /// texture (a repetitive background), and the misalignment does not count.
+    /// The board's measurements and the depths off it (Scores' board and
+    /// depth fields) at that best alignment, when there are board frames.
+    /// Where the board agrees with this transform but would not agree there,
+    /// and nothing else favours it, the edges were drawn by texture (a
+    /// repetitive background), and the misalignment does not count
+    /// (Params::refuting_center_offset).
     std::optional<Scores> optimum_board;
     double median_depth = 0.0;         ///< [m] of the scored lidar edges, camera frame
     std::vector<Alternative> alternatives;
