@@ -68,8 +68,8 @@ void emit_quality(YAML::Emitter& out, const Calibrator::Result& result) {
   out << YAML::Key << "misalignment_gain" << YAML::Value << format_number(q.misalignment_gain);
   out << YAML::Key << "optimum_edge_score" << YAML::Value << format_number(q.optimum_edge_score);
   if (q.optimum_board) {
-    // The board at the edges' best alignment: far worse than in `scores`,
-    // the edges were drawn there by texture, and the misalignment does not count.
+    // The board at the edges' best alignment: where it is far worse than in
+    // `scores`, texture drew the edges there and the misalignment may not count.
     const CalibrationCheck::Scores& b = *q.optimum_board;
     out << YAML::Key << "optimum_board" << YAML::Value << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "center_offset_m" << YAML::Value << format_number(b.center_offset);

@@ -35,10 +35,12 @@ void score_edges(const detail::EdgeSums& sums, CalibrationCheck::Scores& s) {
 /// not win by the few it keeps, and one that brings more in must not score
 /// above 1 by their number (shares of the checked transform's count did: a
 /// wrong one turning far ground returns up onto a textured image scored 2.06
-/// against the right one's 0.71, random scene 2095762356).
+/// against the right one's 0.71, random scene 2095762356). `at_alignment`,
+/// when given, receives the scores at that best alignment (with edges).
 CalibrationCheck::Scores score(const detail::SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar,
                                int most_edges, const detail::LeftView& view, double depth,
-                               const CalibrationCheck::Params& params) {
+                               const CalibrationCheck::Params& params,
+                               CalibrationCheck::Scores* at_alignment = nullptr) {
   CalibrationCheck::Scores s;
   score_edges(scorer.edges(T_camera_lidar), s);
   scorer.depth(T_camera_lidar, s);
@@ -56,6 +58,7 @@ CalibrationCheck::Scores score(const detail::SceneScorer& scorer, const Eigen::I
   if (best.edge_points > 0) s.support += best.edge_score * best.edge_points / std::max(best.edge_points, most_edges);
   if (std::isfinite(best.depth_agreement)) s.support += best.depth_agreement;
   if (std::isfinite(best.outside_fraction)) s.support += 1.0 - best.outside_fraction;
+  if (at_alignment) *at_alignment = best;
   return s;
 }
 
@@ -178,7 +181,8 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
   int most_seen = seen(T_camera_lidar);
   for (const Alternative& alternative : alternatives)
     most_seen = std::max(most_seen, seen(alternative.T_lidar_camera.inverse()));
-  report.scores = score(scorer, T_camera_lidar, most_seen, view, depth, params_);
+  CalibrationCheck::Scores at_alignment;
+  report.scores = score(scorer, T_camera_lidar, most_seen, view, depth, params_, &at_alignment);
   for (Alternative& alternative : alternatives)
     alternative.scores = score(scorer, alternative.T_lidar_camera.inverse(), most_seen, view, depth, params_);
   report.alternatives = std::move(alternatives);
@@ -194,12 +198,9 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
     report.optimum_edge_score = alignment.optimum_score;
     if (alignment.optimum_score > 0.0)
       report.misalignment_gain = std::max(0.0, 1.0 - report.scores.edge_score / alignment.optimum_score);
-    if (report.board_frames > 0) {
-      CalibrationCheck::Scores there;
-      scorer.board(alignment.T_camera_lidar_best, there);
-      scorer.depth(alignment.T_camera_lidar_best, there);
-      report.optimum_board = there;
-    }
+    // score() measured the board there already: its refine_alignment() is
+    // the same optimum as align_edges() finds.
+    if (report.board_frames > 0) report.optimum_board = at_alignment;
     if (report.scores.scene_edge_points >= params_.min_scene_edge_points)
       report.scene_misalignment = detail::scene_motion(scorer, T_camera_lidar, view, depth, params_) / view.fx;
   }
