@@ -1,6 +1,7 @@
 // Camera-side stages and registration on one rendered 1280x960 frame: the
 // board of the default target 3 m ahead, yawed 10 deg, in front of a wall.
 #include <l2s/board_pose_refiner.hpp>
+#include <l2s/circle_finder.hpp>
 #include <l2s/edge_filter.hpp>
 #include <l2s/registrar.hpp>
 #include <l2s/stereo_matcher.hpp>
@@ -65,6 +66,23 @@ void BM_EdgeFilter_Filter(benchmark::State& state) {
   state.counters["points_in"] = static_cast<double>(f.board.size());
 }
 BENCHMARK(BM_EdgeFilter_Filter)->Unit(benchmark::kMillisecond);
+
+/// The camera's circle search on the filtered edges of the frame (the
+/// default preset's: candidates, then the whole pattern's votes when the
+/// candidates do not form it).
+void BM_CircleFinder_FindCamera(benchmark::State& state) {
+  const Frame& f = frame();
+  const auto edges = l2s::EdgeFilter().filter(f.pair.left, f.scene.camera.left, f.board, f.plane, f.scene.target);
+  const l2s::CircleFinder finder;
+  const Eigen::Vector3d up_optical(0.0, -1.0, 0.0);
+  for (auto _ : state) {
+    const auto result = finder.find(edges.edges.points, f.plane, up_optical, f.scene.target, edges.gradients);
+    if (!result.found) state.SkipWithError(("circles not found: " + result.reason).c_str());
+    benchmark::DoNotOptimize(result.centers);
+  }
+  state.counters["edge_points"] = static_cast<double>(edges.edges.size());
+}
+BENCHMARK(BM_CircleFinder_FindCamera)->Unit(benchmark::kMillisecond);
 
 void BM_BoardPoseRefiner_Refine(benchmark::State& state) {
   const Frame& f = frame();

@@ -42,17 +42,37 @@ void VoteGrid::smooth() {
 }
 
 std::vector<std::pair<float, Eigen::Vector2d>> VoteGrid::peaks(std::size_t max_peaks) const {
+  if (max_peaks == 0) return {};
   std::vector<std::pair<float, std::size_t>> found;  // (votes, cell index)
+  // Once `max_peaks` maxima are kept, a cell must beat the weakest of them to
+  // matter (cells are scanned in order, so a tie loses to the earlier one):
+  // most cells then cost one comparison instead of eight, and the pattern
+  // search reads its grid once per angle.
+  float floor = 0.0f;
+  std::size_t weakest = 0;
   for (int y = 1; y + 1 < height_; ++y)
     for (int x = 1; x + 1 < width_; ++x) {
       const float v = votes_[index(x, y)];
-      if (v <= 0.0f) continue;
+      if (v <= floor) continue;
       bool peak = true;
       for (int dy = -1; dy <= 1 && peak; ++dy)
         for (int dx = -1; dx <= 1 && peak; ++dx)
           if ((dx || dy) && (votes_[index(x + dx, y + dy)] > v || (votes_[index(x + dx, y + dy)] == v && dy * 3 + dx < 0)))
             peak = false;
-      if (peak) found.emplace_back(v, index(x, y));
+      if (!peak) continue;
+      if (found.size() < max_peaks) {
+        found.emplace_back(v, index(x, y));
+        if (found.size() < max_peaks) continue;
+      } else {
+        found[weakest] = {v, index(x, y)};
+      }
+      // The weakest kept: fewest votes, and of equal ones the latest cell.
+      weakest = 0;
+      for (std::size_t i = 1; i < found.size(); ++i)
+        if (found[i].first < found[weakest].first ||
+            (found[i].first == found[weakest].first && found[i].second > found[weakest].second))
+          weakest = i;
+      floor = found[weakest].first;
     }
   const auto stronger = [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); };
   const std::size_t kept = std::min(max_peaks, found.size());
