@@ -173,6 +173,38 @@ def plot_scenes(rows, out_dir):
     save(fig, out_dir, "scenes.png")
 
 
+POSE_TITLES = {
+    "poses": "Error against the number of board poses (stereo rig, VLP-16, K = 1, 10 frames per pose)",
+    "mono": "Mono camera by the board's markers against the number of board poses (VLP-16, K = 1)",
+    "lidar-pair": "Lidar to lidar, VLP-16 to HDL-32E, against the number of board poses (K = 1)",
+}
+
+
+def plot_poses(rows, out_dir, experiment):
+    """Boxes of the error after P = 1, 2, 3, 5 poses of the same recordings."""
+    for r in rows:
+        fields = dict(f.split("=", 1) for f in r["scene"].split() if "=" in f)
+        r["poses"] = int(fields.get("poses", 0))
+    counts = sorted({r["poses"] for r in rows})
+    presets = sorted({r["preset"] for r in rows})
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, (key, scale, label) in zip(axes, METRICS):
+        values = defaultdict(list)
+        for r in rows:
+            if r["success"]:
+                values[(r["poses"], r["preset"])].append(r[key])
+        grouped_boxes(ax, counts, presets, values, [PRESET_COLORS.get(p, "tab:gray") for p in presets],
+                      presets, scale)
+        failed = sum(1 for r in rows if not r["success"])
+        ax.set_xlabel("board poses P" + (f" ({failed} runs failed)" if failed else ""))
+        ax.set_ylabel(label)
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend()
+    fig.suptitle(POSE_TITLES[experiment])
+    save(fig, out_dir, experiment + ".png")
+
+
 def save(fig, out_dir, name):
     fig.tight_layout()
     path = os.path.join(out_dir, name)
@@ -200,6 +232,9 @@ def main():
         plot_lidars(by_experiment["quick"], out_dir, "quick.png", "Quick suite (VLP-16, K = 1, 10 frames)")
     if "scenes" in by_experiment:
         plot_scenes(by_experiment["scenes"], out_dir)
+    for experiment in POSE_TITLES:
+        if experiment in by_experiment:
+            plot_poses(by_experiment[experiment], out_dir, experiment)
 
 
 if __name__ == "__main__":

@@ -385,18 +385,63 @@ namespace l2s::sim {
 namespace {
 
 TEST(SuitePlan, PosesExperimentIsOneRecordingPerSettingWithFourEvaluations) {
-  SuiteOptions options;
-  options.experiments = {"poses"};
-  options.presets = {"default"};
-  options.repeats = 2;
-  const std::vector<SuiteGroup> plan = make_suite_plan(options);
-  ASSERT_EQ(plan.size(), 18u);
-  for (const SuiteGroup& group : plan) {
-    EXPECT_EQ(group.frames, 5 * 10 + 4 * 2);  // five poses of 10 frames, 2 moving frames between
-    ASSERT_EQ(group.cells.size(), 1u);
-    EXPECT_EQ(group.cells[0].lidar, "vlp16");
-    EXPECT_EQ(group.cells[0].rows(), 4);
+  for (const char* experiment : {"poses", "mono", "lidar-pair"}) {
+    SuiteOptions options;
+    options.experiments = {experiment};
+    options.presets = {"default"};
+    options.repeats = 2;
+    const std::vector<SuiteGroup> plan = make_suite_plan(options);
+    ASSERT_EQ(plan.size(), 18u) << experiment;
+    for (const SuiteGroup& group : plan) {
+      EXPECT_EQ(group.frames, 5 * 10 + 4 * 2);  // five poses of 10 frames, 2 moving frames between
+      ASSERT_EQ(group.cells.size(), 1u);
+      EXPECT_EQ(group.cells[0].lidar, "vlp16");
+      EXPECT_EQ(group.cells[0].rows(), 4) << experiment;
+    }
   }
+}
+
+/// The first group of a pose experiment's plan (setting 1, seed of the plan), default preset.
+SuiteGroup first_pose_group(const std::string& experiment) {
+  SuiteOptions options;
+  options.experiments = {experiment};
+  options.presets = {"default"};
+  options.repeats = 1;
+  return make_suite_plan(options).front();
+}
+
+/// The four evaluations of one recording: after 1, 2, 3 and 5 poses, every
+/// one calibrated, no moving frame in a pose, within `max_e_t` / `max_e_r`.
+void expect_pose_rows(const std::vector<SuiteRow>& rows, double max_e_t, double max_e_r) {
+  ASSERT_EQ(rows.size(), 4u);
+  const int asked[4] = {1, 2, 3, 5};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const SuiteRow& row = rows[i];
+    EXPECT_TRUE(row.success) << row.reason;
+    EXPECT_NE(row.scene.find("poses=" + std::to_string(asked[i]) + " "), std::string::npos) << row.scene;
+    EXPECT_NE(row.scene.find("moving_in_poses=0"), std::string::npos) << row.scene;
+    EXPECT_LT(row.e_t, max_e_t) << row.scene;
+    EXPECT_LT(row.e_r, max_e_r) << row.scene;
+    EXPECT_GT(row.lidar_frames, 0);
+    EXPECT_GT(row.camera_frames, 0);  // lidar-pair: the second lidar's detections
+    EXPECT_EQ(row.verdict, "ok") << row.check_reasons;
+    if (i > 0) {
+      EXPECT_GT(row.frames, rows[i - 1].frames);
+    }
+  }
+}
+
+// Bounds about three times what each measured (setting 1, seed of the plan):
+// mono 1.2 / 0.6 / 0.5 / 0.4 mm and 0.025 / 0.042 / 0.013 / 0.007 deg.
+TEST(SuiteRunner, MonoExperimentCalibratesTheLeftCameraByTheMarkers) {
+  const SuiteGroup group = first_pose_group("mono");
+  expect_pose_rows(run_suite_group(group, group.cells, 0), 0.004, 0.15 * M_PI / 180.0);
+}
+
+// Lidar-pair 1.7 / 0.6 / 1.0 / 1.1 mm and 0.16 / 0.03 / 0.03 / 0.02 deg.
+TEST(SuiteRunner, LidarPairExperimentCalibratesTheSecondLidar) {
+  const SuiteGroup group = first_pose_group("lidar-pair");
+  expect_pose_rows(run_suite_group(group, group.cells, 0), 0.006, 0.4 * M_PI / 180.0);
 }
 
 TEST(SuiteStats, PosesSummaryCountsCoverageAndMovingFramesPerP) {

@@ -34,16 +34,16 @@ ExperimentSpec spec_of(const std::string& experiment, const SuiteOptions& option
   if (experiment == "lidars") return {all_settings, {"vlp16", "hdl32", "hdl64"}, {1.0}, 30, false};
   // Quick: a simple, a rotated and the hardest setting of Table I.
   if (experiment == "quick") return {{1, 3, 8}, {"vlp16"}, {1.0}, 10, false};
-  // Poses: one recording of five poses per setting (its frames: all of them).
-  if (experiment == "poses")
+  // Pose experiments: one recording of five poses per setting (its frames: all of them).
+  if (is_pose_experiment(experiment))
     return {all_settings, {"vlp16"}, {1.0}, detail::pose_recording_frames(detail::kMostPoses), false};
   if (experiment == "scenes") {
     std::vector<int> scenes;
     for (int s = 1; s <= options.scene_count; ++s) scenes.push_back(s);
     return {scenes, {"random"}, {1.0}, options.scene_frames, false};
   }
-  throw ParamError("experiment",
-                   "unknown experiment '" + experiment + "' (frames, noise, lidars, scenes, poses or quick)");
+  throw ParamError("experiment", "unknown experiment '" + experiment +
+                                     "' (frames, noise, lidars, scenes, poses, mono, lidar-pair or quick)");
 }
 
 // FNV-1a: a stable hash of a name (std::hash is not specified across platforms).

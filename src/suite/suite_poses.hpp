@@ -1,8 +1,10 @@
 #pragma once
-// The suite's "poses" experiment (issue 9): one recording of five board
-// poses per setting, calibrated once per preset and evaluated after the
-// first 1, 2, 3 and 5 poses; with the uncertainty's coverage of the true
-// error and any moving frame that entered a pose (private).
+// The suite's pose experiments (issue 9: "poses" with the stereo rig,
+// "mono" with its left camera alone, "lidar-pair" with a second lidar): one
+// recording of five board poses per setting, calibrated once per preset and
+// evaluated after the first 1, 2, 3 and 5 poses; with the uncertainty's
+// coverage of the true error and any moving frame that entered a pose
+// (private).
 
 #include <l2s/calibrator.hpp>
 #include <l2s/sim/suite.hpp>
@@ -19,9 +21,9 @@ constexpr int kMostPoses = 5;
 /// Frames of the recording with the first `poses` poses.
 constexpr int pose_recording_frames(int poses) { return poses * kPoseFrames + (poses - 1) * kMovingFrames; }
 
-/// DoFs (of six) whose true error lies within the result's stated 95 %
-/// bound; -1 when it has no valid uncertainty.
-int covered_dofs(const Calibrator::Result& result, const Eigen::Isometry3d& T_true);
+/// DoFs (of six) of the transform `T` whose true error lies within the
+/// stated 95 % bound of `u`; -1 when not found or `u` is not valid.
+int covered_dofs(bool found, const Eigen::Isometry3d& T, const FitUncertainty& u, const Eigen::Isometry3d& T_true);
 
 /// A cell's row from its calibration: success, reason, frames, verdict, the
 /// errors against T_true when a transform was found, and their coverage.
@@ -32,7 +34,8 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const
 std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells, int threads,
                                       const std::function<void()>& on_frame);
 
-/// The "poses" section of summary.md.
-void write_poses_summary(std::ostringstream& out, const std::vector<const SuiteRow*>& rows);
+/// The section of a pose experiment in summary.md.
+void write_poses_summary(std::ostringstream& out, const std::string& experiment,
+                         const std::vector<const SuiteRow*>& rows);
 
 }  // namespace l2s::sim::detail

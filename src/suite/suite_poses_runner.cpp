@@ -1,7 +1,12 @@
-// The poses experiment's runs: a MultiPoseSimulator recording of five poses
-// (10 frames each, 2 moving frames between), every preset's Calibrator fed
+// The runs of the pose experiments (issue 9): one recording of five poses
+// (10 frames each, 2 moving frames between), every preset's calibrator fed
 // all of it, evaluated at the end of the 1st, 2nd, 3rd and 5th pose: the
 // same frames for every P, so P = 3 and P = 1 compare on the same data.
+//  - poses: the stereo rig and the VLP-16;
+//  - mono: the rig's left camera alone, the board carrying the default
+//    ArUco markers (a Calibrator of one camera);
+//  - lidar-pair: the VLP-16 and an HDL-32E near it, no images
+//    (LidarPairCalibrator; the error is that of T_lidar_lidar2).
 // Each row's `scene` field records what the summary needs beyond the errors:
 // poses asked, drawn and used, moving frames that entered a pose, and how many
 // of the six DoF's errors the stated 95 % bounds covered.
@@ -11,8 +16,10 @@
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
 #include <l2s/fit_uncertainty.hpp>
+#include <l2s/lidar_pair_calibrator.hpp>
 #include <l2s/metrics.hpp>
 #include <l2s/pose.hpp>
+#include <l2s/sim/lidar_pair.hpp>
 #include <l2s/sim/multi_pose.hpp>
 
 #include <algorithm>
@@ -27,27 +34,153 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-SuiteRow evaluate_poses(const SuiteCell& cell, const Calibrator::Result& result, const MultiPoseSimulator& sim,
-                        int asked, double seconds) {
-  SuiteRow row = evaluate(cell, result, sim.T_lidar_camera(), seconds, "");
-  const std::vector<int> moving = sim.moving_frames();
+constexpr const char* kSecondLidar = "hdl32";  ///< lidar-pair: the issue's VLP-16 to HDL-32E
+
+/// The recording of a group: images of a multi-pose scene (poses, mono) or
+/// the sweeps of two lidars (lidar-pair).
+struct PoseRecording {
+  std::unique_ptr<MultiPoseSimulator> images;
+  std::unique_ptr<LidarPairSimulator> lidars;
+
+  int frames() const { return images ? images->frames() : lidars->frames(); }
+  SimulatedFrame frame(int index) const { return images ? images->frame(index) : lidars->frame(index); }
+  const std::vector<PoseSegment>& segments() const { return images ? images->segments() : lidars->segments(); }
+  std::vector<int> moving_frames() const { return images ? images->moving_frames() : lidars->moving_frames(); }
+  std::size_t poses() const { return images ? images->poses().size() : lidars->poses().size(); }
+};
+
+PoseRecording record(const SuiteGroup& group, const std::string& lidar, int threads) {
+  SimulationConfig base = SimulationConfig::paper(group.setting, lidar);
+  base.frames = kPoseFrames;
+  base.noise_factor = group.noise_k;
+  base.seed = group.seed;
+  base.threads = threads;
+  PoseRecording recording;
+  if (group.experiment == "lidar-pair") {
+    LidarPairConfig config;
+    config.base = base;
+    config.lidar2 = kSecondLidar;
+    config.poses = kMostPoses;
+    config.moving_frames = kMovingFrames;
+    recording.lidars = std::make_unique<LidarPairSimulator>(config);
+    return recording;
+  }
+  if (group.experiment == "mono") {
+    base.mono = true;
+    if (!base.target.markers) base.target.markers = MarkerLayout::corners_default();
+  }
+  MultiPoseConfig config;
+  config.base = base;
+  config.poses = kMostPoses;
+  config.moving_frames = kMovingFrames;
+  recording.images = std::make_unique<MultiPoseSimulator>(config);
+  return recording;
+}
+
+/// The `scene` record of a row: what the poses summary reads back.
+template <class Result>
+std::string pose_record(const Result& result, const PoseRecording& recording, int asked, int covered) {
+  const std::vector<int> moving = recording.moving_frames();
   int entered = 0;
-  for (const PoseReport& pose : result.poses)
+  for (const auto& pose : result.poses)
     for (int f : pose.frames) entered += std::count(moving.begin(), moving.end(), f) > 0;
   std::ostringstream scene;
-  scene << "poses=" << asked << " drawn=" << std::min<std::size_t>(asked, sim.poses().size())
+  scene << "poses=" << asked << " drawn=" << std::min<std::size_t>(asked, recording.poses())
         << " found=" << result.poses.size() << " used=" << result.poses_used() << " moving_in_poses=" << entered;
-  if (result.found)
-    scene << " covered=" << std::max(0, row.covered)
-          << " valid=" << result.joint.uncertainty.valid;
-  row.scene = scene.str();
-  return row;
+  if (result.found) scene << " covered=" << std::max(0, covered) << " valid=" << result.joint.uncertainty.valid;
+  return scene.str();
+}
+
+/// One cell's calibration over the recording.
+class PoseCellRun {
+ public:
+  virtual ~PoseCellRun() = default;
+  virtual void add(const SimulatedFrame& frame, int index) = 0;
+  /// The cell's row after the first `asked` poses.
+  virtual SuiteRow evaluate(const PoseRecording& recording, int asked, double seconds) const = 0;
+};
+
+/// A camera (stereo pair or the left camera alone) against the lidar.
+class CameraRun : public PoseCellRun {
+ public:
+  CameraRun(const SuiteCell& cell, const MultiPoseSimulator& sim)
+      : cell_(cell),
+        mono_(sim.config().base.mono),
+        calibrator_(mono_ ? Calibrator(sim.cameras().left, sim.cameras().images, sim.config().base.target,
+                                       Calibrator::Params::preset(cell.preset))
+                          : Calibrator(sim.cameras(), sim.config().base.target, Calibrator::Params::preset(cell.preset))),
+        T_true_(sim.T_lidar_camera()) {}
+
+  void add(const SimulatedFrame& frame, int index) override {
+    if (mono_)
+      calibrator_.add(frame.lidar, frame.left, std::to_string(index));
+    else
+      calibrator_.add(frame.lidar, frame.left, frame.right, std::to_string(index));
+  }
+
+  SuiteRow evaluate(const PoseRecording& recording, int asked, double seconds) const override {
+    const Calibrator::Result result = calibrator_.result();
+    SuiteRow row = detail::evaluate(cell_, result, T_true_, seconds, "");
+    row.scene = pose_record(result, recording, asked, row.covered);
+    return row;
+  }
+
+ private:
+  SuiteCell cell_;
+  bool mono_;
+  Calibrator calibrator_;
+  Eigen::Isometry3d T_true_;
+};
+
+/// The second lidar against the first.
+class LidarPairRun : public PoseCellRun {
+ public:
+  LidarPairRun(const SuiteCell& cell, const LidarPairSimulator& sim)
+      : cell_(cell),
+        calibrator_(sim.config().base.target, Calibrator::Params::preset(cell.preset)),
+        T_true_(sim.T_lidar_lidar2()) {}
+
+  void add(const SimulatedFrame& frame, int index) override {
+    calibrator_.add(frame.lidar, frame.lidar2, std::to_string(index));
+  }
+
+  SuiteRow evaluate(const PoseRecording& recording, int asked, double seconds) const override {
+    const LidarPairCalibrator::Result result = calibrator_.result();
+    SuiteRow row = SuiteRow::of(cell_);
+    row.verdict = verdict_name(result.check.verdict);
+    for (const std::string& reason : result.check.reasons)
+      row.check_reasons += (row.check_reasons.empty() ? "" : " | ") + reason;
+    row.covered = covered_dofs(result.found, result.T_lidar_lidar2, result.joint.uncertainty, T_true_);
+    row.frames = result.frames_added;
+    row.success = result.found;
+    row.reason = result.reason;
+    row.lidar_frames = result.lidar_frames;
+    row.camera_frames = result.lidar2_frames;  // the second sensor's column
+    row.wall_s = seconds;
+    if (result.found) {
+      const PoseError error = pose_error(result.T_lidar_lidar2, T_true_);
+      row.e_t = error.translation;
+      row.e_r = error.rotation;
+    }
+    row.scene = pose_record(result, recording, asked, row.covered);
+    return row;
+  }
+
+ private:
+  SuiteCell cell_;
+  LidarPairCalibrator calibrator_;
+  Eigen::Isometry3d T_true_;
+};
+
+std::unique_ptr<PoseCellRun> start_run(const SuiteCell& cell, const PoseRecording& recording) {
+  if (recording.lidars) return std::make_unique<LidarPairRun>(cell, *recording.lidars);
+  return std::make_unique<CameraRun>(cell, *recording.images);
 }
 
 /// Frame index after which the first `poses` static poses are complete.
-int last_frame_of(const MultiPoseSimulator& sim, int poses) {
+int last_frame_of(const PoseRecording& recording, int poses) {
   int last = -1, seen = 0;
-  for (const PoseSegment& s : sim.segments())
+  for (const PoseSegment& s : recording.segments())
     if (s.pose_index >= 0 && seen++ < poses) last = s.first_frame + s.frames - 1;
   return last;
 }
@@ -56,23 +189,15 @@ int last_frame_of(const MultiPoseSimulator& sim, int poses) {
 
 std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells, int threads,
                                       const std::function<void()>& on_frame) {
-  MultiPoseConfig config;
-  config.base = SimulationConfig::paper(group.setting, cells.empty() ? "vlp16" : cells.front().lidar);
-  config.base.frames = kPoseFrames;
-  config.base.noise_factor = group.noise_k;
-  config.base.seed = group.seed;
-  config.base.threads = threads;
-  config.poses = kMostPoses;
-  config.moving_frames = kMovingFrames;
-  std::unique_ptr<MultiPoseSimulator> sim;
+  std::optional<PoseRecording> recording;
   std::string failure;
   try {
-    sim = std::make_unique<MultiPoseSimulator>(config);
+    recording = record(group, cells.empty() ? "vlp16" : cells.front().lidar, threads);
   } catch (const Error& error) {
     failure = std::string("simulation: ") + error.what();
   }
   std::vector<SuiteRow> rows;
-  if (!sim) {
+  if (!recording) {
     for (const SuiteCell& cell : cells)
       for (int p : {1, 2, 3, 5}) {
         SuiteRow row = SuiteRow::of(cell);
@@ -83,30 +208,30 @@ std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector
     for (int i = 0; i < group.frames && on_frame; ++i) on_frame();
     return rows;
   }
-  std::vector<Calibrator> calibrators;
+  std::vector<std::unique_ptr<PoseCellRun>> runs;
   std::vector<double> seconds(cells.size(), 0.0);
-  for (const SuiteCell& cell : cells)
-    calibrators.emplace_back(sim->cameras(), config.base.target, Calibrator::Params::preset(cell.preset));
+  for (const SuiteCell& cell : cells) runs.push_back(start_run(cell, *recording));
   std::vector<std::vector<SuiteRow>> per_cell(cells.size());
-  for (int i = 0; i < sim->frames(); ++i) {
-    const SimulatedFrame frame = sim->frame(i);
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  for (int i = 0; i < recording->frames(); ++i) {
+    const SimulatedFrame frame = recording->frame(i);
     for (std::size_t c = 0; c < cells.size(); ++c) {
-      const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
       const auto start = Clock::now();
-      calibrators[c].add(frame.lidar, frame.left, frame.right, std::to_string(i));
+      runs[c]->add(frame, i);
       seconds[c] += since(start);
       for (int p : {1, 2, 3, 5}) {
         // Fewer poses drawn than asked: the largest P is evaluated at the end.
-        if (std::min(last_frame_of(*sim, p), sim->frames() - 1) != i) continue;
+        if (std::min(last_frame_of(*recording, p), recording->frames() - 1) != i) continue;
         const auto evaluated = Clock::now();
-        const Calibrator::Result result = calibrators[c].result();
+        SuiteRow row = runs[c]->evaluate(*recording, p, seconds[c]);
         seconds[c] += since(evaluated);
-        per_cell[c].push_back(evaluate_poses(cells[c], result, *sim, p, seconds[c]));
+        row.wall_s = seconds[c];
+        per_cell[c].push_back(std::move(row));
       }
     }
     if (on_frame) on_frame();
   }
-  for (int i = sim->frames(); i < group.frames && on_frame; ++i) on_frame();
+  for (int i = recording->frames(); i < group.frames && on_frame; ++i) on_frame();
   for (auto& cell_rows : per_cell) rows.insert(rows.end(), cell_rows.begin(), cell_rows.end());
   return rows;
 }

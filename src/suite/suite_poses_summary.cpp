@@ -37,7 +37,8 @@ struct PerP {
 
 }  // namespace
 
-void write_poses_summary(std::ostringstream& out, const std::vector<const SuiteRow*>& rows) {
+void write_poses_summary(std::ostringstream& out, const std::string& experiment,
+                         const std::vector<const SuiteRow*>& rows) {
   std::map<std::string, std::map<int, PerP>> stats;  // preset -> P -> stats
   std::map<std::string, std::map<std::string, std::map<int, double>>> e_r_of;  // preset -> run -> P -> e_r
   for (const SuiteRow* row : rows) {
@@ -58,8 +59,11 @@ void write_poses_summary(std::ostringstream& out, const std::vector<const SuiteR
     }
     e_r_of[row->preset][std::to_string(row->setting) + "/" + std::to_string(row->repetition)][p] = row->e_r;
   }
+  const char* sensors = experiment == "mono"         ? "VLP-16 and the left camera, the board's markers"
+                        : experiment == "lidar-pair" ? "VLP-16 and HDL-32E"
+                                                     : "VLP-16 and the stereo rig";
   out << "One recording per setting and repetition: " << kMostPoses << " board poses of " << kPoseFrames
-      << " frames, " << kMovingFrames << " moving frames between poses (VLP-16). Each P is evaluated on the "
+      << " frames, " << kMovingFrames << " moving frames between poses (" << sensors << "). Each P is evaluated on the "
       << "first P poses of the same recording. Coverage: the true error within the stated 95 % bound, per "
          "DoF and for all six DoF of a run at once.\n\n"
       << "| preset | P | runs | success | poses used (mean) | e_t median [mm] | e_t p90 [mm] | e_r median [deg] | "

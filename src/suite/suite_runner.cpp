@@ -24,11 +24,10 @@ namespace l2s::sim {
 
 namespace detail {
 
-int covered_dofs(const Calibrator::Result& result, const Eigen::Isometry3d& T_true) {
-  const FitUncertainty& u = result.joint.uncertainty;
-  if (!result.found || !u.valid) return -1;
-  const Eigen::Vector3d dt = result.T_lidar_camera.translation() - T_true.translation();
-  const Eigen::Vector3d drpy = roll_pitch_yaw(result.T_lidar_camera.rotation()) - roll_pitch_yaw(T_true.rotation());
+int covered_dofs(bool found, const Eigen::Isometry3d& T, const FitUncertainty& u, const Eigen::Isometry3d& T_true) {
+  if (!found || !u.valid) return -1;
+  const Eigen::Vector3d dt = T.translation() - T_true.translation();
+  const Eigen::Vector3d drpy = roll_pitch_yaw(T.rotation()) - roll_pitch_yaw(T_true.rotation());
   int covered = 0;
   for (int k = 0; k < 6; ++k)
     covered += std::abs(k < 3 ? dt[k] : std::remainder(drpy[k - 3], 2.0 * M_PI)) <= u.bound_95[k];
@@ -44,7 +43,7 @@ SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const
     for (const std::string& reason : result.quality.reasons)
       row.check_reasons += (row.check_reasons.empty() ? "" : " | ") + reason;  // reasons hold "; " themselves
   }
-  row.covered = covered_dofs(result, T_true);
+  row.covered = covered_dofs(result.found, result.T_lidar_camera, result.joint.uncertainty, T_true);
   row.frames = result.frames_added;
   row.success = result.found;
   row.reason = result.reason;
@@ -207,7 +206,7 @@ std::vector<SuiteRow> rows_of(const std::vector<SuiteCell>& cells, const GroupDa
 
 std::vector<SuiteRow> run_suite_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells,
                                       int threads, const std::function<void()>& on_frame) {
-  if (group.experiment == "poses") return detail::run_poses_group(group, cells, threads, on_frame);
+  if (is_pose_experiment(group.experiment)) return detail::run_poses_group(group, cells, threads, on_frame);
   const GroupData data = simulate_group(group, cells, threads);
   std::vector<Run> runs = start_runs(cells, data);
   Evaluations evaluations;

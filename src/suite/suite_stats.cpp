@@ -27,6 +27,11 @@ const char* title_of(const std::string& experiment) {
   if (experiment == "quick") return "quick: CI smoke test (VLP-16, K = 1, 10 frames)";
   if (experiment == "scenes") return "scenes: randomised rigs, scenes and lidars (K = 1)";
   if (experiment == "poses") return "poses: error against the number of board poses (VLP-16, K = 1, 10 frames per pose)";
+  if (experiment == "mono")
+    return "mono: the left camera alone, by the board's markers, against the number of board poses (VLP-16, K = 1, "
+           "10 frames per pose)";
+  if (experiment == "lidar-pair")
+    return "lidar-pair: VLP-16 to HDL-32E against the number of board poses (K = 1, 10 frames per pose)";
   return "";
 }
 
@@ -103,7 +108,7 @@ std::string suite_summary_markdown(const std::vector<SuiteRow>& all_rows) {
          "interquartile range (IQR) of e_t and e_r over the successful ones (failures are counted, "
          "never dropped).\n";
   for (const auto& experiment : experiments) {
-    if (experiment == "scenes" || experiment == "poses") {
+    if (experiment == "scenes" || is_pose_experiment(experiment)) {
       std::vector<const SuiteRow*> scene_rows;
       for (const auto& row : rows)
         if (row.experiment == experiment) scene_rows.push_back(&row);
@@ -111,7 +116,7 @@ std::string suite_summary_markdown(const std::vector<SuiteRow>& all_rows) {
       if (experiment == "scenes")
         detail::write_scenes_summary(out, scene_rows);
       else
-        detail::write_poses_summary(out, scene_rows);
+        detail::write_poses_summary(out, experiment, scene_rows);
       continue;
     }
     int last = 0;

@@ -18,9 +18,8 @@ namespace l2s::sim {
 /// (Fig. 7), "quick" (a CI smoke test: 3 settings, VLP-16, K = 1, 10 frames),
 /// "scenes" (`scene_count` randomised scenes, sim::make_random_scene: other
 /// rigs, lenses, raw images, boards, backgrounds, light, lidars and their
-/// quirks; one run per scene, `setting` numbers the scene), or "poses" (issue
-/// 9: one recording of five board poses per setting, VLP-16, evaluated after
-/// 1, 2, 3 and 5 poses; `scene` holds the poses and uncertainty coverage).
+/// quirks; one run per scene, `setting` numbers the scene), or a pose
+/// experiment (is_pose_experiment).
 struct L2S_SUITE_EXPORT SuiteOptions {
   std::vector<std::string> experiments = {"frames", "noise", "lidars"};
   std::vector<std::string> presets = {"default", "paper"};  ///< Calibrator presets
@@ -32,6 +31,16 @@ struct L2S_SUITE_EXPORT SuiteOptions {
   /// Throws ParamError naming the field.
   void validate() const;
 };
+
+/// The experiments of issue 9 that record five board poses per setting
+/// (VLP-16, K = 1, 10 frames a pose, moving frames between) and evaluate each
+/// run after 1, 2, 3 and 5 poses (`scene` holds the poses and the uncertainty's
+/// coverage): "poses" (the stereo rig), "mono" (its left camera alone, the
+/// board carrying ArUco markers) and "lidar-pair" (the VLP-16 and an HDL-32E,
+/// T_lidar_lidar2).
+inline bool is_pose_experiment(const std::string& experiment) {
+  return experiment == "poses" || experiment == "mono" || experiment == "lidar-pair";
+}
 
 /// One calibration run: simulated data, preset, and how often it is evaluated.
 struct L2S_SUITE_EXPORT SuiteCell {
@@ -45,8 +54,8 @@ struct L2S_SUITE_EXPORT SuiteCell {
   std::uint64_t seed = 0;   ///< simulation seed (SimulationConfig::seed)
   bool every_frame = false; ///< evaluated after each added frame (Fig. 5), else once at the end
 
-  /// Rows the cell writes: one per evaluation (poses: after 1, 2, 3 and 5 poses).
-  int rows() const { return experiment == "poses" ? 4 : every_frame ? frames : 1; }
+  /// Rows the cell writes: one per evaluation (pose experiments: after 1, 2, 3 and 5 poses).
+  int rows() const { return is_pose_experiment(experiment) ? 4 : every_frame ? frames : 1; }
   /// Identity of the cell within results (seed and frames excluded).
   std::string key() const;
 };

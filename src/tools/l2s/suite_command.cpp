@@ -271,8 +271,9 @@ void add_suite_command(CLI::App& app, Runner& runner) {
       ->required();
   command->add_option("--experiment", options->experiment,
                       "frames (Fig. 5), noise (Fig. 6), lidars (Fig. 7), all (the three), or scenes "
-                      "(randomised rigs, scenes and lidars), or poses (1, 2, 3, 5 board poses)")
-      ->check(CLI::IsMember({"frames", "noise", "lidars", "all", "scenes", "poses"}));
+                      "(randomised rigs, scenes and lidars), or poses (1, 2, 3, 5 board poses), mono (the same "
+                      "with the left camera alone and the board's markers), lidar-pair (VLP-16 to HDL-32E)")
+      ->check(CLI::IsMember({"frames", "noise", "lidars", "all", "scenes", "poses", "mono", "lidar-pair"}));
   command->add_option("--count", options->scene_count, "scenes of --experiment scenes (--quick: 3)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
