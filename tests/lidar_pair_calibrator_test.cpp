@@ -76,6 +76,24 @@ TEST(LidarPairCalibrator, Vlp16ToHdl32ThreePosesMeetsAcceptance) {
   EXPECT_LE(median(e_r), 0.05);
 }
 
+// One pose: no residual shows what each lidar's detection of the pose shares
+// across its four centres (the plane's tilt, the pattern's turn in it), so
+// the stated 95 % bound must hold both lidars' share, not one. With one
+// share the bounds held all six DoFs in 4 of 9 one-pose runs of the suite's
+// lidar-pair experiment (seed 1); with both, in 24 of 27 (three seeds).
+TEST(LidarPairCalibrator, OnePoseBoundHoldsBothLidarsShare) {
+  const PairRun run = calibrate(config("vlp16", "hdl32", 1, 10, 1, 4));
+  ASSERT_TRUE(run.result.found) << run.result.reason;
+  const FitUncertainty& u = run.result.joint.uncertainty;
+  ASSERT_TRUE(u.valid);
+  const JointRegistrar::Params joint = Calibrator::Params::preset("default").joint;
+  for (int k = 3; k < 6; ++k)
+    EXPECT_GE(u.bound_95[k], 1.96 * std::sqrt(2.0) * joint.pose_bias_rotation) << "rotation DoF " << k - 3;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_GE(u.bound_95[k], 1.96 * std::sqrt(2.0) * joint.pose_bias_translation) << "translation DoF " << k;
+  EXPECT_LE(run.error.rotation, std::hypot(u.bound_95[3], u.bound_95[4], u.bound_95[5]));
+}
+
 // A ring-free lidar2 (Livox Avia): its sweeps are accumulated over the static
 // board (one detection per 20 sweeps) against the VLP-16's every sweep.
 TEST(LidarPairCalibrator, RingFreeLidar2IsAccumulated) {

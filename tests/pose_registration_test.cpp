@@ -193,5 +193,33 @@ TEST(PoseRegistration, TheCamerasRangeErrorWidensTheUncertaintyWithTheSquareOfTh
   EXPECT_GT(bounds(6.0, range)[4], 3.0 * bounds(3.0, range)[4]);
 }
 
+// What a pose's detections share beyond the joint fit's pose bias, as any
+// sensor's isotropic share (a second lidar's, a ring-free lidar's larger
+// one), adds to every DoF's bound in quadrature; on 100 random scenes the
+// bounds missed a DoF in 6 of 14 Mid-360 runs with the ring lidar's share.
+TEST(PoseRegistration, ASensorsExtraShareWidensEveryDof) {
+  const Calibrator::Params params;
+  const auto bounds = [&](const detail::SourceRange& r) {
+    std::vector<FrameReport> frames(10);
+    for (FrameReport& f : frames) {
+      f.lidar.found = f.camera.found = true;
+      f.lidar.centers = f.camera.centers = board_centres(Eigen::Vector3d::Zero());
+    }
+    Calibrator::Result result;
+    EXPECT_TRUE(detail::register_poses(frames, std::nullopt, Target{}, params, r, result)) << result.reason;
+    EXPECT_TRUE(result.joint.uncertainty.valid);
+    return result.joint.uncertainty.bound_95;
+  };
+  detail::SourceRange ring_free;
+  ring_free.extra_translation = detail::kRingFreePoseShare * params.joint.pose_bias_translation;
+  ring_free.extra_rotation = detail::kRingFreePoseShare * params.joint.pose_bias_rotation;
+  const auto ring = bounds({}), free = bounds(ring_free);
+  const double z95 = 1.95996;
+  for (int k : {3, 4, 5})
+    EXPECT_NEAR(free[k], z95 * std::hypot(params.joint.pose_bias_rotation, ring_free.extra_rotation), 0.02 * free[k])
+        << "rotation DoF " << k - 3;
+  for (int k = 0; k < 6; ++k) EXPECT_GT(free[k], 2.0 * ring[k]) << "DoF " << k;
+}
+
 }  // namespace
 }  // namespace l2s

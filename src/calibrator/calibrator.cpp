@@ -71,6 +71,7 @@ struct Calibrator::Impl {
   // rim refinement converged, when one did (SceneScorer measures the board
   // on refined poses).
   std::shared_ptr<const CameraObservation> window_camera;
+  bool ring_free_lidar = false;  // a frame's sweep had no ring structure
 
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
@@ -79,6 +80,7 @@ struct Calibrator::Impl {
   FrameReport record(FrameReport report, const std::string& id, bool ring_free, ObserveLidar&& observe_lidar,
                      ObserveCamera&& observe_camera) {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
+    ring_free_lidar = ring_free_lidar || ring_free;
     std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
     if (check && ring_free) {
       const bool refined = report.camera.found && report.camera.rim_rms_px > 0.0;
@@ -109,11 +111,18 @@ struct Calibrator::Impl {
 
   // How the camera's board poses err with range: stereo measures it by
   // disparity over fx B (the rectified pair's), a mono camera by the
-  // apparent size of the board's markers, spread over about its width.
+  // apparent size of the board's markers, spread over about its width. A
+  // ring-free lidar's poses err more than the ring lidar's that the joint
+  // fit's pose bias stands for.
   detail::SourceRange camera_range() const {
     const double base = mono ? cameras.left.fx() * target.board_width
                              : -camera_setup->cameras.right.projection_matrix(0, 3);
-    return {base, params.camera_range_bias_px};
+    detail::SourceRange range{base, params.camera_range_bias_px};
+    if (ring_free_lidar) {
+      range.extra_translation = detail::kRingFreePoseShare * params.joint.pose_bias_translation;
+      range.extra_rotation = detail::kRingFreePoseShare * params.joint.pose_bias_rotation;
+    }
+    return range;
   }
 
   // Clusters the centres and registers them: the result before its check.
@@ -338,6 +347,7 @@ void Calibrator::reset() {
   impl_->check_frames.reset();
   impl_->lidar.reset();
   impl_->window_camera.reset();
+  impl_->ring_free_lidar = false;
 }
 
 const std::vector<CheckFrame>& Calibrator::check_frames() const { return impl_->check_frames.frames(); }

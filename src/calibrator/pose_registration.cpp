@@ -297,6 +297,15 @@ MotionCovariance camera_pose_bias(const HoleCenters& c, const SourceRange& range
   return bias;
 }
 
+/// All a pose's shares beyond the joint pose bias (SourceRange): the
+/// camera's range and tilt, and the extra isotropic share.
+MotionCovariance source_pose_bias(const HoleCenters& c, const SourceRange& range) {
+  MotionCovariance bias = camera_pose_bias(c, range);
+  bias.topLeftCorner<3, 3>().diagonal().array() += range.extra_translation * range.extra_translation;
+  bias.bottomRightCorner<3, 3>().diagonal().array() += range.extra_rotation * range.extra_rotation;
+  return bias;
+}
+
 /// Fits the poses whose centres cluster on both sides and records the fit.
 bool fit_poses(Calibrator::Result& result, const Calibrator::Params& params, const SourceRange& source_range) {
   std::vector<PosePair> pairs;
@@ -309,7 +318,7 @@ bool fit_poses(Calibrator::Result& result, const Calibrator::Params& params, con
       continue;
     }
     pairs.push_back({pose.lidar_centroids.centers, pose.camera_centroids.centers,
-                     camera_pose_bias(pose.camera_centroids.centers, source_range)});
+                     source_pose_bias(pose.camera_centroids.centers, source_range)});
     fitted.push_back(static_cast<int>(p));
   }
   if (pairs.empty()) {
