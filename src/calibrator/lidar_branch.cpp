@@ -76,7 +76,10 @@ class LidarHypothesisTester {
       }
       return std::nullopt;
     }
-    const CloudEvidenceParams evidence{params_.lidar_plane.inlier_threshold, params_.discontinuity.min_discontinuity};
+    // A ring-free window covers the board all over: a hole with open space
+    // behind shows by the returns it lacks.
+    const CloudEvidenceParams evidence{params_.lidar_plane.inlier_threshold, params_.discontinuity.min_discontinuity,
+                                       ring_free_};
     hypothesis.evidence = cloud_evidence(cloud_.points, plane.plane,
                                          board_pose_from_centers(attempt.circles.centers, plane.plane), target_,
                                          params_.lidar_verifier, evidence);

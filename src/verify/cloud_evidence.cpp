@@ -1,5 +1,6 @@
 #include "verify/cloud_evidence.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace l2s::detail {
@@ -19,6 +20,45 @@ int region_of(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& ho
   return in_outer && !in_inner ? 4 : -1;
 }
 
+/// Whether a board-plane position lies on the board's face: inside the
+/// outline and clear of every hole by the rim margin.
+bool on_face(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& holes, const Target& target,
+             const BoardVerifier::Params& verifier) {
+  if (std::abs(q.x()) > 0.5 * target.board_width || std::abs(q.y()) > 0.5 * target.board_height) return false;
+  for (const Eigen::Vector2d& h : holes)
+    if ((q - h).norm() < target.hole_radius + verifier.hole_margin) return false;
+  return true;
+}
+
+constexpr double kAroundWidth = 0.05;  ///< [m] the ring of face around each hole that gives its density
+
+/// The hole a face position lies around (within kAroundWidth of its rim
+/// margin), or -1.
+int around_hole(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& holes, const Target& target,
+                const BoardVerifier::Params& verifier) {
+  const double inner = target.hole_radius + verifier.hole_margin;
+  for (int h = 0; h < 4; ++h)
+    if ((q - holes[h]).norm() < inner + kAroundWidth) return h;
+  return -1;
+}
+
+/// Adds to each hole's open samples the returns a solid face would have
+/// given inside it beyond those that came (on the plane or behind it), at
+/// the density of on-plane returns on the face around it. Where the sensor
+/// does not look (a field of view's edge across the hole) the face around
+/// it has no returns either, and nothing is added.
+void count_missing_returns(const std::array<int, 4>& around, const Target& target,
+                           const BoardVerifier::Params& verifier, BoardEvidence& evidence) {
+  const double inner = target.hole_radius + verifier.hole_margin;
+  const double ring_area = M_PI * ((inner + kAroundWidth) * (inner + kAroundWidth) - inner * inner);
+  const double open_radius = std::max(0.0, target.hole_radius - verifier.hole_margin);
+  for (int h = 0; h < 4; ++h) {
+    const double expected = around[h] / ring_area * M_PI * open_radius * open_radius;
+    const double missing = expected - evidence.hole_open[h] - evidence.hole_blocked[h];
+    if (missing > 0.0) evidence.hole_open[h] += static_cast<int>(std::floor(missing));
+  }
+}
+
 }  // namespace
 
 BoardEvidence cloud_evidence(const std::vector<Eigen::Vector3d>& points, const Plane& plane,
@@ -27,6 +67,7 @@ BoardEvidence cloud_evidence(const std::vector<Eigen::Vector3d>& points, const P
   BoardEvidence evidence;
   const Eigen::Isometry3d T_board_sensor = T_sensor_board.inverse();
   const std::array<Eigen::Vector2d, 4> holes = target.hole_centers();
+  std::array<int, 4> around{};  // on-plane returns on the face around each hole
   for (const Eigen::Vector3d& p : points) {
     const double range = p.norm();
     if (!std::isfinite(range) || range < 1e-9) continue;
@@ -38,13 +79,19 @@ BoardEvidence cloud_evidence(const std::vector<Eigen::Vector3d>& points, const P
     const bool on = std::abs(range - t) <= params.on_plane;
     const bool past = range >= t + params.behind;
     if (!on && !past) continue;
-    const int region = region_of((T_board_sensor * (t * ray)).head<2>(), holes, target, verifier);
-    if (region < 0) continue;
+    const Eigen::Vector2d q = (T_board_sensor * (t * ray)).head<2>();
+    const int region = region_of(q, holes, target, verifier);
+    if (region < 0) {
+      if (on && on_face(q, holes, target, verifier))
+        if (const int h = around_hole(q, holes, target, verifier); h >= 0) ++around[h];
+      continue;
+    }
     if (region < 4)
       ++(on ? evidence.hole_blocked : evidence.hole_open)[region];
     else
       ++(on ? evidence.outline_blocked : evidence.outline_open);
   }
+  if (params.count_missing_returns) count_missing_returns(around, target, verifier, evidence);
   return evidence;
 }
 
