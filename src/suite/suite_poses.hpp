@@ -21,9 +21,14 @@ constexpr int kMostPoses = 5;
 /// Frames of the recording with the first `poses` poses.
 constexpr int pose_recording_frames(int poses) { return poses * kPoseFrames + (poses - 1) * kMovingFrames; }
 
-/// DoFs (of six) of the transform `T` whose true error lies within the
-/// stated 95 % bound of `u`; -1 when not found or `u` is not valid.
-int covered_dofs(bool found, const Eigen::Isometry3d& T, const FitUncertainty& u, const Eigen::Isometry3d& T_true);
+/// A row's outcome from a calibration's transform `T`: success and reason,
+/// and when found its errors against T_true and how many DoFs (of six) the
+/// stated 95 % bounds of `u` cover (-1 when `u` is not valid).
+void set_outcome(SuiteRow& row, bool found, const std::string& reason, const Eigen::Isometry3d& T,
+                 const FitUncertainty& u, const Eigen::Isometry3d& T_true);
+
+/// A row's check verdict and its reasons, joined by " | ".
+void set_verdict(SuiteRow& row, CalibrationCheck::Verdict verdict, const std::vector<std::string>& reasons);
 
 /// A cell's row from its calibration: success, reason, frames, verdict, the
 /// errors against T_true when a transform was found, and their coverage.

@@ -15,16 +15,12 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
-#include <l2s/fit_uncertainty.hpp>
 #include <l2s/lidar_pair_calibrator.hpp>
-#include <l2s/metrics.hpp>
-#include <l2s/pose.hpp>
 #include <l2s/sim/lidar_pair.hpp>
 #include <l2s/sim/multi_pose.hpp>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -96,8 +92,8 @@ class PoseCellRun {
  public:
   virtual ~PoseCellRun() = default;
   virtual void add(const SimulatedFrame& frame, int index) = 0;
-  /// The cell's row after the first `asked` poses.
-  virtual SuiteRow evaluate(const PoseRecording& recording, int asked, double seconds) const = 0;
+  /// The cell's row after the first `asked` poses (its wall time left to the caller).
+  virtual SuiteRow evaluate(const PoseRecording& recording, int asked) const = 0;
 };
 
 /// A camera (stereo pair or the left camera alone) against the lidar.
@@ -118,9 +114,9 @@ class CameraRun : public PoseCellRun {
       calibrator_.add(frame.lidar, frame.left, frame.right, std::to_string(index));
   }
 
-  SuiteRow evaluate(const PoseRecording& recording, int asked, double seconds) const override {
+  SuiteRow evaluate(const PoseRecording& recording, int asked) const override {
     const Calibrator::Result result = calibrator_.result();
-    SuiteRow row = detail::evaluate(cell_, result, T_true_, seconds, "");
+    SuiteRow row = detail::evaluate(cell_, result, T_true_, 0.0, "");
     row.scene = pose_record(result, recording, asked, row.covered);
     return row;
   }
@@ -144,24 +140,14 @@ class LidarPairRun : public PoseCellRun {
     calibrator_.add(frame.lidar, frame.lidar2, std::to_string(index));
   }
 
-  SuiteRow evaluate(const PoseRecording& recording, int asked, double seconds) const override {
+  SuiteRow evaluate(const PoseRecording& recording, int asked) const override {
     const LidarPairCalibrator::Result result = calibrator_.result();
     SuiteRow row = SuiteRow::of(cell_);
-    row.verdict = verdict_name(result.check.verdict);
-    for (const std::string& reason : result.check.reasons)
-      row.check_reasons += (row.check_reasons.empty() ? "" : " | ") + reason;
-    row.covered = covered_dofs(result.found, result.T_lidar_lidar2, result.joint.uncertainty, T_true_);
+    set_verdict(row, result.check.verdict, result.check.reasons);
+    set_outcome(row, result.found, result.reason, result.T_lidar_lidar2, result.joint.uncertainty, T_true_);
     row.frames = result.frames_added;
-    row.success = result.found;
-    row.reason = result.reason;
     row.lidar_frames = result.lidar_frames;
     row.camera_frames = result.lidar2_frames;  // the second sensor's column
-    row.wall_s = seconds;
-    if (result.found) {
-      const PoseError error = pose_error(result.T_lidar_lidar2, T_true_);
-      row.e_t = error.translation;
-      row.e_r = error.rotation;
-    }
     row.scene = pose_record(result, recording, asked, row.covered);
     return row;
   }
@@ -223,7 +209,7 @@ std::vector<SuiteRow> run_poses_group(const SuiteGroup& group, const std::vector
         // Fewer poses drawn than asked: the largest P is evaluated at the end.
         if (std::min(last_frame_of(*recording, p), recording->frames() - 1) != i) continue;
         const auto evaluated = Clock::now();
-        SuiteRow row = runs[c]->evaluate(*recording, p, seconds[c]);
+        SuiteRow row = runs[c]->evaluate(*recording, p);
         seconds[c] += since(evaluated);
         row.wall_s = seconds[c];
         per_cell[c].push_back(std::move(row));

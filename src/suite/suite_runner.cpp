@@ -24,8 +24,12 @@ namespace l2s::sim {
 
 namespace detail {
 
-int covered_dofs(bool found, const Eigen::Isometry3d& T, const FitUncertainty& u, const Eigen::Isometry3d& T_true) {
-  if (!found || !u.valid) return -1;
+namespace {
+
+/// DoFs (of six) of `T` whose true error lies within the stated 95 % bound
+/// of `u`; -1 when `u` is not valid.
+int covered_dofs(const Eigen::Isometry3d& T, const FitUncertainty& u, const Eigen::Isometry3d& T_true) {
+  if (!u.valid) return -1;
   const Eigen::Vector3d dt = T.translation() - T_true.translation();
   const Eigen::Vector3d drpy = roll_pitch_yaw(T.rotation()) - roll_pitch_yaw(T_true.rotation());
   int covered = 0;
@@ -34,27 +38,35 @@ int covered_dofs(bool found, const Eigen::Isometry3d& T, const FitUncertainty& u
   return covered;
 }
 
+}  // namespace
+
+void set_outcome(SuiteRow& row, bool found, const std::string& reason, const Eigen::Isometry3d& T,
+                 const FitUncertainty& u, const Eigen::Isometry3d& T_true) {
+  row.success = found;
+  row.reason = reason;
+  if (!found) return;
+  row.covered = covered_dofs(T, u, T_true);
+  const PoseError error = pose_error(T, T_true);
+  row.e_t = error.translation;
+  row.e_r = error.rotation;
+}
+
+void set_verdict(SuiteRow& row, CalibrationCheck::Verdict verdict, const std::vector<std::string>& reasons) {
+  row.verdict = verdict_name(verdict);
+  for (const std::string& reason : reasons)
+    row.check_reasons += (row.check_reasons.empty() ? "" : " | ") + reason;  // reasons hold "; " themselves
+}
+
 SuiteRow evaluate(const SuiteCell& cell, const Calibrator::Result& result, const Eigen::Isometry3d& T_true,
                   double wall_s, const std::string& scene) {
   SuiteRow row = SuiteRow::of(cell);
   row.scene = scene;
-  if (result.checked) {
-    row.verdict = verdict_name(result.quality.verdict);
-    for (const std::string& reason : result.quality.reasons)
-      row.check_reasons += (row.check_reasons.empty() ? "" : " | ") + reason;  // reasons hold "; " themselves
-  }
-  row.covered = covered_dofs(result.found, result.T_lidar_camera, result.joint.uncertainty, T_true);
+  if (result.checked) set_verdict(row, result.quality.verdict, result.quality.reasons);
+  set_outcome(row, result.found, result.reason, result.T_lidar_camera, result.joint.uncertainty, T_true);
   row.frames = result.frames_added;
-  row.success = result.found;
-  row.reason = result.reason;
   row.lidar_frames = result.lidar_frames;
   row.camera_frames = result.camera_frames;
   row.wall_s = wall_s;
-  if (result.found) {
-    const PoseError error = pose_error(result.T_lidar_camera, T_true);
-    row.e_t = error.translation;
-    row.e_r = error.rotation;
-  }
   return row;
 }
 

@@ -20,26 +20,21 @@ int region_of(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& ho
   return in_outer && !in_inner ? 4 : -1;
 }
 
-/// Whether a board-plane position lies on the board's face: inside the
-/// outline and clear of every hole by the rim margin.
-bool on_face(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& holes, const Target& target,
-             const BoardVerifier::Params& verifier) {
-  if (std::abs(q.x()) > 0.5 * target.board_width || std::abs(q.y()) > 0.5 * target.board_height) return false;
-  for (const Eigen::Vector2d& h : holes)
-    if ((q - h).norm() < target.hole_radius + verifier.hole_margin) return false;
-  return true;
-}
-
 constexpr double kAroundWidth = 0.05;  ///< [m] the ring of face around each hole that gives its density
 
-/// The hole a face position lies around (within kAroundWidth of its rim
-/// margin), or -1.
-int around_hole(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& holes, const Target& target,
-                const BoardVerifier::Params& verifier) {
+/// The hole whose ring of face (kAroundWidth beyond its rim margin, inside
+/// the outline) a board-plane position lies in, or -1.
+int face_ring_of(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>& holes, const Target& target,
+                 const BoardVerifier::Params& verifier) {
+  if (std::abs(q.x()) > 0.5 * target.board_width || std::abs(q.y()) > 0.5 * target.board_height) return -1;
   const double inner = target.hole_radius + verifier.hole_margin;
-  for (int h = 0; h < 4; ++h)
-    if ((q - holes[h]).norm() < inner + kAroundWidth) return h;
-  return -1;
+  int ring = -1;
+  for (int h = 0; h < 4; ++h) {
+    const double d = (q - holes[h]).norm();
+    if (d < inner) return -1;  // a hole's rim margin or inside: not the face
+    if (d < inner + kAroundWidth && ring < 0) ring = h;
+  }
+  return ring;
 }
 
 /// Adds to each hole's open samples the returns a solid face would have
@@ -82,8 +77,8 @@ BoardEvidence cloud_evidence(const std::vector<Eigen::Vector3d>& points, const P
     const Eigen::Vector2d q = (T_board_sensor * (t * ray)).head<2>();
     const int region = region_of(q, holes, target, verifier);
     if (region < 0) {
-      if (on && on_face(q, holes, target, verifier))
-        if (const int h = around_hole(q, holes, target, verifier); h >= 0) ++around[h];
+      const bool counted = on && params.count_missing_returns;  // the face's density, only when it is used
+      if (const int h = counted ? face_ring_of(q, holes, target, verifier) : -1; h >= 0) ++around[h];
       continue;
     }
     if (region < 4)
