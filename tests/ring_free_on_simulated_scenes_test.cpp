@@ -4,6 +4,7 @@
 // (inspect_lidar) and must give the four hole centres.
 #include <l2s/calibrator.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/metrics.hpp>
 #include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/simulation.hpp>
 
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -70,6 +72,32 @@ TEST(RingFreeOnSimulatedScenes, ABoardBeforeOpenSpaceShowsItsHolesByTheReturnsTh
   EXPECT_TRUE(in.ring_free);
   ASSERT_TRUE(in.report.found) << in.report.failed_stage << ": " << in.report.reason;
   EXPECT_LT(worst_centre_error(in.report.centers, survey::lidar_truth(simulator)), 0.008);
+}
+
+TEST(RingFreeOnSimulatedScenes, ASparseScanKeepsAWindowWithoutTheBoardUntilItShowsTheHoles) {
+  // Random scene 1169212705: a Mid-360 3.5 m from the board in a corridor.
+  // 20 sweeps gave 2970 board returns, too few to show the holes, and both
+  // windows of a 30-sweep recording (20, then the 10 left) lost the board.
+  // A window without the board grows instead of starting afresh.
+  const auto params = Calibrator::Params::preset("default");
+  const int sweeps = params.ring_free_frames + params.ring_free_frames / 2;
+  const sim::RandomScene scene = sim::make_random_scene(1169212705, sweeps);
+  const sim::DatasetSimulator& simulator = *scene.simulator;
+  ASSERT_EQ(simulator.config().lidar, "mid360");
+  Calibrator calibrator(simulator.cameras(), simulator.config().target, params);
+  const auto first = simulator.frame(0);
+  const BranchReport camera = calibrator.camera_branch(first.left, first.right);
+  ASSERT_TRUE(camera.found) << camera.reason;
+  for (int i = 0; i < sweeps; ++i) {
+    const FrameReport report = calibrator.add(simulator.sweep(i), camera);
+    EXPECT_EQ(report.lidar.found, i + 1 == sweeps) << "sweep " << i << ": " << report.lidar.reason;
+  }
+  const Calibrator::Result result = calibrator.result();
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_EQ(result.lidar_frames, 1);
+  const auto error = pose_error(result.T_lidar_camera, simulator.T_lidar_camera());
+  EXPECT_LT(error.translation, 0.03);
+  EXPECT_LT(error.rotation, 0.6 * M_PI / 180.0);
 }
 
 }  // namespace

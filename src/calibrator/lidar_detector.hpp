@@ -2,7 +2,8 @@
 // One lidar's board detector over a stream of sweeps (private): a ring lidar
 // is detected sweep by sweep; a ring-free one (non-repetitive scan) is
 // accumulated over params.ring_free_frames sweeps of the static board and
-// detected once per window. Shared by every facade with a lidar in it (the
+// detected once per window (a window without the board grows, up to twice
+// that, before it starts afresh). Shared by every facade with a lidar in it (the
 // stereo Calibrator, the LidarPairCalibrator), so each lidar of a rig keeps
 // its own window.
 
