@@ -124,7 +124,7 @@ class L2S_EXPORT Calibrator {
     PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
     DiscontinuityFilter::Params discontinuity;
     OccupancyEdgeFilter::Params occupancy;  ///< hole edges of ring-free (accumulated) clouds
-    int ring_free_frames = 20;  ///< ring-free lidars: sweeps of the static board accumulated into one detection (2 s at 10 Hz), >= 1
+    int ring_free_frames = 20;  ///< ring-free lidars: sweeps of the static board accumulated into one detection (2 s at 10 Hz); a window without the board grows, detected again every ring_free_frames / 2 more, up to twice this (a sparse scan), >= 1
     CircleFinder::Params lidar_circles;
     BoardVerifier::Params lidar_verifier;  ///< which board-sized plane is the board (holes seen through, outline clear)
     // Camera branch: stereo, pass-through, plane, Sobel edges, circles, rim refinement.
@@ -236,8 +236,10 @@ class L2S_EXPORT Calibrator {
   /// A cloud without `ring` gets rings from elevation angles; a ring-free
   /// cloud (non-repetitive scan) is accumulated with the next ones, and every
   /// ring_free_frames sweeps give one lidar detection (the frame that
-  /// completes the window reports it; the others report "accumulating"; a
-  /// window left incomplete is detected as it stands by result()).
+  /// completes the window reports it; the others report "accumulating", as
+  /// do the frames of a window without the board that grows (up to twice
+  /// ring_free_frames) to be detected again; a window left incomplete is
+  /// detected as it stands by result()).
   /// Bad sweeps (empty, NaN, no board, ring or intensity of another length
   /// than the points) are reported in the frame's lidar branch, never thrown.
   /// Images that cannot be used throw InputError naming the image ("left
