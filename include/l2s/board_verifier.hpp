@@ -29,12 +29,13 @@ struct BoardEvidence {
   double fit_scale = 0.005;           ///< [m] rim fit rms that halves the score (a quarter of the circle finder's inlier threshold)
   /// Share of the rims predicted by the fitted board that the sensor's own
   /// data confirm (camera: rim samples that found an image edge in both
-  /// views); NaN when the sensor cannot tell.
+  /// views, or, for rims too faint for that, arcs of the rims whose mean
+  /// brightness step stands above the noise); NaN when the sensor cannot tell.
   double rim_support = std::numeric_limits<double>::quiet_NaN();
   /// The same share on the board's face beside the rims (camera: image edges
-  /// as strong as a rim on circles around the holes). A board's face is
-  /// smoother than its rims are sharp; a patterned wall has as many edges
-  /// anywhere. NaN when the sensor cannot tell.
+  /// as strong as a rim, or arcs with a step, on circles around the holes).
+  /// A board's face is smoother than its rims are sharp; a patterned wall
+  /// has as many edges anywhere. NaN when the sensor cannot tell.
   double rim_background = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -9,6 +9,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace l2s::detail {
@@ -31,6 +33,16 @@ inline cv::Mat gray_mat(const Image& image, const std::string& name) {
   cv::Mat gray;
   cv::cvtColor(view, gray, cv::COLOR_BGR2GRAY);
   return gray;
+}
+
+/// Bilinear gray value of an 8-bit gray image; the caller keeps (x, y) one
+/// pixel inside it.
+inline double gray_at(const cv::Mat& image, double x, double y) {
+  const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
+  const double fx = x - ix, fy = y - iy;
+  const std::uint8_t* r0 = image.ptr<std::uint8_t>(iy) + ix;
+  const std::uint8_t* r1 = image.ptr<std::uint8_t>(iy + 1) + ix;
+  return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
 }
 
 }  // namespace l2s::detail

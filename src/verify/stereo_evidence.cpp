@@ -1,5 +1,6 @@
 #include "verify/stereo_evidence.hpp"
 
+#include "camera/cv_image.hpp"
 #include "camera/noise_level.hpp"
 
 #include <algorithm>
@@ -10,15 +11,6 @@
 
 namespace l2s::detail {
 namespace {
-
-/// Bilinear gray value; the caller keeps (x, y) one pixel inside the image.
-double bilinear(const cv::Mat& image, double x, double y) {
-  const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
-  const double fx = x - ix, fy = y - iy;
-  const std::uint8_t* r0 = image.ptr<std::uint8_t>(iy) + ix;
-  const std::uint8_t* r1 = image.ptr<std::uint8_t>(iy + 1) + ix;
-  return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
-}
 
 /// The gray values of a (2k+1) x (2k+1) patch at a sub-pixel centre, with
 /// their mean and standard deviation.
@@ -32,7 +24,7 @@ Patch sample_patch(const cv::Mat& image, const Eigen::Vector2d& c, int k) {
   double s = 0, ss = 0;
   for (int dy = -k; dy <= k; ++dy)
     for (int dx = -k; dx <= k; ++dx) {
-      const double v = bilinear(image, c.x() + dx, c.y() + dy);
+      const double v = gray_at(image, c.x() + dx, c.y() + dy);
       patch.values.push_back(v);
       s += v, ss += v * v;
     }
@@ -53,7 +45,7 @@ class RowStrip {
     const double x0 = centre.x() - hi - k;  // column of shift hi's leftmost pixel
     for (int dy = -k; dy <= k; ++dy)
       for (int i = 0; i < width_; ++i)
-        values_[static_cast<std::size_t>((dy + k) * width_ + i)] = bilinear(image, x0 + i, centre.y() + dy);
+        values_[static_cast<std::size_t>((dy + k) * width_ + i)] = gray_at(image, x0 + i, centre.y() + dy);
   }
 
   /// Zero-mean normalised cross-correlation of `patch` with the strip's
@@ -151,7 +143,7 @@ std::vector<double> gray_values(const cv::Mat& image, const CameraInfo& camera, 
   for (const auto& q : places) {
     const Eigen::Vector2d px = camera.project(T_camera_board * Eigen::Vector3d(q.x(), q.y(), 0.0));
     if (px.allFinite() && px.x() >= 0 && px.y() >= 0 && px.x() < image.cols - 1 && px.y() < image.rows - 1)
-      values.push_back(bilinear(image, px.x(), px.y()));
+      values.push_back(gray_at(image, px.x(), px.y()));
   }
   return values;
 }
