@@ -146,10 +146,10 @@ class CameraHypothesisTester {
   /// something else: on 100 random scenes (frames 0, 5, 10) 17 of the 23
   /// accepted without a converged refinement were 4 cm to 3.4 m off (boxes,
   /// wall patches, the pattern one hole off), against 6 of the 244 with one;
-  /// the three within 2 cm showed all four holes open beside a face with
-  /// at most 2 % of its samples on an edge.
+  /// the three within 2 cm (two scenes) showed all four holes open beside a
+  /// face with at most 2 % of its samples on an edge.
   bool holes_plainly_open(const BoardEvidence& e) const {
-    constexpr double kSmoothFace = 0.1;  // share of face samples on an edge
+    constexpr double kSmoothFace = 0.1;  // rim_background: share of the face's samples (or arcs) with an edge
     const BoardVerifier::Params& v = f_.params.camera_verifier;
     for (int h = 0; h < 4; ++h) {
       const int samples = e.hole_open[h] + e.hole_blocked[h];

@@ -7,7 +7,9 @@
 // consistent step along tens of pixels: the mean step over an arc is many
 // times its noise. The same sum on circles on the board's face around the
 // holes tells a board (a smooth face, steps only at its rims) from a
-// patterned wall taken for one (steps anywhere).
+// patterned wall taken for one (steps anywhere). Only that excess is
+// evidence: a smooth shading ramp across a circle sums to a significant
+// "step" too, on the face circles as on the rims.
 
 #include <l2s/camera.hpp>
 #include <l2s/target.hpp>
