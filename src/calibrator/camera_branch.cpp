@@ -109,7 +109,6 @@ class CameraHypothesisTester {
                             .refine(f_.left, f_.right, f_.cameras, f_.target, attempt.T_camera_board);
       hypothesis.evidence.rim_support = attempt.refined->edge_fraction;
       hypothesis.evidence.rim_background = attempt.refined->face_edge_fraction;
-      confirm_faint_rims(attempt.refined->T_camera_board, hypothesis.evidence);
       if (refinement_diverged(*attempt.refined, f_.params.board_refiner)) {
         std::ostringstream reason;
         reason.precision(1);
@@ -118,6 +117,7 @@ class CameraHypothesisTester {
         stop(hypothesis, "refine", reason.str());
         return std::nullopt;
       }
+      confirm_faint_rims(attempt.refined->T_camera_board, hypothesis.evidence);
       if (!attempt.refined->converged && !holes_plainly_open(hypothesis.evidence)) {
         stop(hypothesis, "refine",
              "the rim refinement did not converge (" + attempt.refined->reason +
