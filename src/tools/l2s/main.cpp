@@ -2,6 +2,7 @@
 // Exit codes: 0 success, 1 bad input or failed job (one-line reason on stderr),
 // 2 bad command line, 3 a transform the scene check finds suspect (l2s check).
 
+#include "allocator_tuning.hpp"
 #include "commands.hpp"
 
 #include <l2s/error.hpp>
@@ -10,6 +11,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+  l2s::cli::keep_large_buffers();
   CLI::App app{"l2s: automatic lidar-stereo extrinsic calibration (l2scalib)"};
   app.require_subcommand(1);
   l2s::cli::Runner runner;
