@@ -68,9 +68,16 @@ Eigen::Vector2d PlaneGrid::to_plane(const Eigen::Vector3d& p) const {
   return {q.dot(axes_.right), q.dot(axes_.up)};
 }
 
+Eigen::Vector2i PlaneGrid::index(const Eigen::Vector2d& uv) const {
+  // Clamped so that a point kilometres away cannot overflow the int.
+  constexpr double kLimit = 1e9;
+  return {static_cast<int>(std::clamp(std::floor(uv.x() * inv_u_), -kLimit, kLimit)),
+          static_cast<int>(std::clamp(std::floor(uv.y() * inv_v_), -kLimit, kLimit))};
+}
+
 std::uint64_t PlaneGrid::cell(const Eigen::Vector2d& uv) const {
-  return pack(static_cast<std::int64_t>(std::floor(uv.x() * inv_u_)),
-              static_cast<std::int64_t>(std::floor(uv.y() * inv_v_)));
+  const Eigen::Vector2i c = index(uv);
+  return pack(c.x(), c.y());
 }
 
 std::uint64_t PlaneGrid::neighbour(std::uint64_t cell, int du, int dv) const {
@@ -79,9 +86,37 @@ std::uint64_t PlaneGrid::neighbour(std::uint64_t cell, int du, int dv) const {
   return pack(static_cast<std::int64_t>(u) + du, static_cast<std::int64_t>(v) + dv);
 }
 
+PatchCells::PatchCells(const Eigen::AlignedBox2i& box_cells, const std::vector<Eigen::Vector2i>& cells) {
+  // A bitmap up to this many cells: a board-sized box is a few hundred
+  // cells, a wall's some ten thousand.
+  constexpr std::int64_t kMaxDense = std::int64_t{1} << 22;
+  if (box_cells.isEmpty()) return;
+  const Eigen::Vector2i size = box_cells.sizes() + Eigen::Vector2i::Ones();
+  const std::int64_t area = std::int64_t{size.x()} * size.y();
+  if (area > kMaxDense) {
+    for (const Eigen::Vector2i& c : cells)
+      if (box_cells.contains(c)) sparse_.insert(pack(c.x(), c.y()));
+    return;
+  }
+  origin_ = box_cells.min();
+  columns_ = size.x();
+  dense_.assign(static_cast<std::size_t>(area), 0);
+  for (const Eigen::Vector2i& c : cells)
+    if (box_cells.contains(c)) {
+      const Eigen::Vector2i at = c - origin_;
+      dense_[static_cast<std::size_t>(at.y()) * columns_ + at.x()] = 1;
+    }
+}
+
+bool PatchCells::contains(const Eigen::Vector2i& cell) const {
+  if (dense_.empty()) return sparse_.count(pack(cell.x(), cell.y())) > 0;
+  const Eigen::Vector2i at = cell - origin_;
+  return dense_[static_cast<std::size_t>(at.y()) * columns_ + at.x()] != 0;
+}
+
 bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector3d& p) {
   const Eigen::Vector2d uv = grid.to_plane(p);
-  return patch.box.contains(uv) && patch.cells.count(grid.cell(uv)) > 0;
+  return patch.box.contains(uv) && patch.cells.contains(grid.index(uv));
 }
 
 namespace {
@@ -93,6 +128,7 @@ struct Cells {
   std::unordered_map<std::uint64_t, int> id;  // grid key -> cell id
   std::vector<std::uint64_t> keys;  // cell id -> grid key
   std::vector<int> count;           // points in each cell
+  std::vector<std::size_t> first_point;  // cell id -> a point in it
 
   Cells(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points)
       : uv(points.size()), of_point(points.size()) {
@@ -103,6 +139,7 @@ struct Cells {
       if (inserted) {
         keys.push_back(key);
         count.push_back(0);
+        first_point.push_back(i);
       }
       of_point[i] = it->second;
       ++count[it->second];
@@ -205,9 +242,10 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
   // their points are board points) but not in its extent.
   const double min_cell_points = min_dense_cell_points(cells, parent, best);
   std::vector<bool> dense_cell(cells.keys.size(), false);
+  std::vector<Eigen::Vector2i> patch_cells;
   for (std::size_t c = 0; c < cells.keys.size(); ++c) {
     if (find_root(parent, static_cast<int>(c)) != best) continue;
-    patch.cells.insert(cells.keys[c]);
+    patch_cells.push_back(grid.index(cells.uv[cells.first_point[c]]));
     dense_cell[c] = cells.count[c] >= min_cell_points;
   }
   patch.points = component_points[best];
@@ -217,6 +255,9 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
     if (dense_cell[cells.of_point[i]]) members.push_back(cells.uv[i]);
   fit_box(patch, members, window, window_share);
   fit_extent(patch, members);
+  Eigen::AlignedBox2i box_cells;
+  if (!patch.box.isEmpty()) box_cells = Eigen::AlignedBox2i(grid.index(patch.box.min()), grid.index(patch.box.max()));
+  patch.cells = PatchCells(box_cells, patch_cells);
   return patch;
 }
 

@@ -18,7 +18,8 @@ class PlaneGrid {
  public:
   PlaneGrid(const Plane& plane, const Eigen::Vector3d& axis, double gap_u, double gap_v);
   Eigen::Vector2d to_plane(const Eigen::Vector3d& p) const;  ///< (right, up) [m]
-  std::uint64_t cell(const Eigen::Vector2d& uv) const;
+  Eigen::Vector2i index(const Eigen::Vector2d& uv) const;  ///< (column, row) of the cell holding uv
+  std::uint64_t cell(const Eigen::Vector2d& uv) const;       ///< the same, packed as a hash key
   std::uint64_t neighbour(std::uint64_t cell, int du, int dv) const;
 
  private:
@@ -27,8 +28,27 @@ class PlaneGrid {
   double inv_u_, inv_v_;
 };
 
+/// The cells of a patch that lie in its box. Membership is asked for every
+/// point of a dense cloud near the plane, so it is a flat bitmap over the
+/// box's cells; a box too large for one (a long sparse component of junk)
+/// keeps a hash set instead.
+class PatchCells {
+ public:
+  /// `box_cells`: the (column, row) range of cells that the box covers.
+  PatchCells(const Eigen::AlignedBox2i& box_cells, const std::vector<Eigen::Vector2i>& cells);
+  PatchCells() = default;
+  /// Whether `cell`, one of the box's cells, belongs to the patch.
+  bool contains(const Eigen::Vector2i& cell) const;
+
+ private:
+  Eigen::Vector2i origin_ = Eigen::Vector2i::Zero();
+  int columns_ = 0;
+  std::vector<std::uint8_t> dense_;            // row-major over the box's cells
+  std::unordered_set<std::uint64_t> sparse_;   // when the box has too many cells for a bitmap
+};
+
 struct Patch {
-  std::unordered_set<std::uint64_t> cells;  ///< grid cells of the patch
+  PatchCells cells;                         ///< grid cells of the patch inside its box
   Eigen::AlignedBox2d box;                  ///< in-plane (right, up) region of the board within the patch
   std::size_t points = 0;                   ///< sample points in it (inside box)
   double extent_long = 0.0;                 ///< [m] smallest enclosing rectangle, longer side

@@ -123,7 +123,7 @@ struct Thresholds {
 };
 
 struct Samples {
-  std::vector<std::size_t> finite;      // indices of the finite input points
+  std::vector<std::size_t> finite;      // indices of the finite input points, in order
   std::vector<Eigen::Vector3d> points;  // random subset in random order (RANSAC pre-scores a prefix)
   std::vector<double> tolerance;        // consensus distance of each sample
 };
@@ -134,15 +134,19 @@ Samples draw_samples(const std::vector<Eigen::Vector3d>& points, std::size_t max
   s.finite.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     if (points[i].allFinite()) s.finite.push_back(i);
-  const std::size_t count = std::min(s.finite.size(), max_samples);
+  // Drawn by a partial shuffle of a copy: the passes over the full cloud go
+  // through `finite` in memory order (in shuffled order, each of a dense
+  // cloud's points was a cache miss: 40 % of the segmenter's time).
+  std::vector<std::size_t> order = s.finite;
+  const std::size_t count = std::min(order.size(), max_samples);
   for (std::size_t i = 0; i < count; ++i) {
-    std::uniform_int_distribution<std::size_t> pick(i, s.finite.size() - 1);
-    std::swap(s.finite[i], s.finite[pick(rng)]);
+    std::uniform_int_distribution<std::size_t> pick(i, order.size() - 1);
+    std::swap(order[i], order[pick(rng)]);
   }
   s.points.resize(count);
   s.tolerance.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
-    s.points[i] = points[s.finite[i]];
+    s.points[i] = points[order[i]];
     s.tolerance[i] = t.consensus(s.points[i]);
   }
   return s;
@@ -214,9 +218,8 @@ void refit(Extraction& e, const std::vector<Eigen::Vector3d>& points, const std:
   for (std::size_t i : patch_consensus) sum_sq += std::pow(plane.signedDistance(points[i]), 2);
   c.plane = plane;
   c.rms = std::sqrt(sum_sq / static_cast<double>(patch_consensus.size()));
-  for (std::size_t i : near)
+  for (std::size_t i : near)  // in index order, as `finite`
     if (std::abs(plane.signedDistance(points[i])) <= t.inliers(points[i])) c.inliers.push_back(i);
-  std::sort(c.inliers.begin(), c.inliers.end());
 }
 
 Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& points,
@@ -249,7 +252,7 @@ Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& point
     ++c.support;
     const Eigen::Vector2d uv = grid.to_plane(points[i]);
     around.add(uv);
-    if (e.patch.box.contains(uv) && e.patch.cells.count(grid.cell(uv))) patch_consensus.push_back(i);
+    if (e.patch.box.contains(uv) && e.patch.cells.contains(grid.index(uv))) patch_consensus.push_back(i);
   }
   c.patch_points = patch_consensus.size();
   if (c.support < params.min_support) {
