@@ -6,6 +6,7 @@
 // sweep (the inspection, its text and its picture).
 #include <l2s/calibrator.hpp>
 #include <l2s/frame_inspector.hpp>
+#include <l2s/stereo_board_locator.hpp>
 #include <l2s/sim/simulation.hpp>
 #include <l2s/viz/inspection_images.hpp>
 
@@ -82,6 +83,25 @@ void BM_CameraBranch_1280x960(benchmark::State& state) {
   state.counters["branch_ms"] = stereo_ms / state.iterations();
 }
 BENCHMARK(BM_CameraBranch_1280x960)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The camera branch's first step alone (default preset): the coarse stereo
+/// pass and the plane segmentation of its cloud into board regions. Args as
+/// BM_CameraBranch_1280x960.
+void BM_StereoBoardLocator_Locate(benchmark::State& state) {
+  const auto& sim = state.range(0) == 0 ? simulator(16, 1) : wall_strips_simulator();
+  const auto frame = sim.frame(0);
+  const l2s::Calibrator::Params params = l2s::Calibrator::Params::preset("default");
+  const l2s::StereoBoardLocator locator(params.locator);
+  double sgbm_ms = 0.0;
+  for (auto _ : state) {
+    const auto located = locator.locate(frame.left, frame.right, sim.cameras(), sim.config().target, params.stereo,
+                                        params.camera_pass_through);
+    if (!located.found) state.SkipWithError(("board not located: " + located.reason).c_str());
+    sgbm_ms += located.stereo.match_ms;
+  }
+  state.counters["sgbm_ms"] = benchmark::Counter(sgbm_ms, benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_StereoBoardLocator_Locate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// The yardstick: one full-frame SGBM pass as a user would run it, OpenCV's
 /// 3-way mode with 128 disparities and 5x5 blocks.
