@@ -32,17 +32,14 @@ cv::Mat to_mat(const Eigen::MatrixXd& m) {
 /// coarse bins finds the bin holding that rank, then only that bin's values
 /// are ranked (sorting a megapixel's values took most of this step's time).
 std::int32_t squared_magnitude_quantile(const cv::Mat& dx, const cv::Mat& dy, double q) {
-  constexpr int kShift = 10;  // bins of 1024: (4 * 255)^2 * 2 fits in ~2k of them
+  constexpr int kShift = 10;                   // bins of 1024 squared levels
+  constexpr std::int32_t kMaxSquared = 2 * 1020 * 1020;  // a 3x3 Sobel of 8-bit pixels reaches 4 * 255 per axis
   const auto squared = [](std::int16_t gx, std::int16_t gy) { return gx * gx + gy * gy; };
   if (dx.total() == 0) return 0;
-  std::vector<std::size_t> histogram;
+  std::vector<std::size_t> histogram((kMaxSquared >> kShift) + 1, 0);
   for (int y = 0; y < dx.rows; ++y) {
     const std::int16_t *gx = dx.ptr<std::int16_t>(y), *gy = dy.ptr<std::int16_t>(y);
-    for (int x = 0; x < dx.cols; ++x) {
-      const auto bin = static_cast<std::size_t>(squared(gx[x], gy[x]) >> kShift);
-      if (bin >= histogram.size()) histogram.resize(bin + 1, 0);
-      ++histogram[bin];
-    }
+    for (int x = 0; x < dx.cols; ++x) ++histogram[static_cast<std::size_t>(squared(gx[x], gy[x]) >> kShift)];
   }
   auto rank = static_cast<std::size_t>(q * static_cast<double>(dx.total() - 1));
   std::size_t bin = 0;

@@ -50,6 +50,11 @@ std::uint64_t pack(std::int64_t u, std::int64_t v) {
          static_cast<std::uint32_t>(v);
 }
 
+Eigen::Vector2i unpack(std::uint64_t key) {
+  return {static_cast<std::int32_t>(static_cast<std::uint32_t>(key >> 32)),
+          static_cast<std::int32_t>(static_cast<std::uint32_t>(key & 0xFFFFFFFFu))};
+}
+
 int find_root(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -81,9 +86,8 @@ std::uint64_t PlaneGrid::cell(const Eigen::Vector2d& uv) const {
 }
 
 std::uint64_t PlaneGrid::neighbour(std::uint64_t cell, int du, int dv) const {
-  const auto u = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell >> 32));
-  const auto v = static_cast<std::int32_t>(static_cast<std::uint32_t>(cell & 0xFFFFFFFFu));
-  return pack(static_cast<std::int64_t>(u) + du, static_cast<std::int64_t>(v) + dv);
+  const Eigen::Vector2i c = unpack(cell);
+  return pack(static_cast<std::int64_t>(c.x()) + du, static_cast<std::int64_t>(c.y()) + dv);
 }
 
 PatchCells::PatchCells(const Eigen::AlignedBox2i& box_cells, const std::vector<Eigen::Vector2i>& cells) {
@@ -114,9 +118,12 @@ bool PatchCells::contains(const Eigen::Vector2i& cell) const {
   return dense_[static_cast<std::size_t>(at.y()) * columns_ + at.x()] != 0;
 }
 
-bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector3d& p) {
-  const Eigen::Vector2d uv = grid.to_plane(p);
+bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector2d& uv) {
   return patch.box.contains(uv) && patch.cells.contains(grid.index(uv));
+}
+
+bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector3d& p) {
+  return in_patch(grid, patch, grid.to_plane(p));
 }
 
 namespace {
@@ -128,7 +135,6 @@ struct Cells {
   std::unordered_map<std::uint64_t, int> id;  // grid key -> cell id
   std::vector<std::uint64_t> keys;  // cell id -> grid key
   std::vector<int> count;           // points in each cell
-  std::vector<std::size_t> first_point;  // cell id -> a point in it
 
   Cells(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points)
       : uv(points.size()), of_point(points.size()) {
@@ -139,7 +145,6 @@ struct Cells {
       if (inserted) {
         keys.push_back(key);
         count.push_back(0);
-        first_point.push_back(i);
       }
       of_point[i] = it->second;
       ++count[it->second];
@@ -245,7 +250,7 @@ Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& p
   std::vector<Eigen::Vector2i> patch_cells;
   for (std::size_t c = 0; c < cells.keys.size(); ++c) {
     if (find_root(parent, static_cast<int>(c)) != best) continue;
-    patch_cells.push_back(grid.index(cells.uv[cells.first_point[c]]));
+    patch_cells.push_back(unpack(cells.keys[c]));
     dense_cell[c] = cells.count[c] >= min_cell_points;
   }
   patch.points = component_points[best];

@@ -62,7 +62,8 @@ struct Patch {
 Patch largest_patch(const PlaneGrid& grid, const std::vector<Eigen::Vector3d>& points,
                     const Eigen::Vector2d& window, double window_share);
 
-/// Is the point in the patch (cell and box)?
+/// Is the point in the patch (cell and box)? In the plane's (right, up), or in 3D.
+bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector2d& uv);
 bool in_patch(const PlaneGrid& grid, const Patch& patch, const Eigen::Vector3d& p);
 
 }  // namespace l2s::detail

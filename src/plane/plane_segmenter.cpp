@@ -252,7 +252,7 @@ Extraction measure(const Plane& plane, const std::vector<Eigen::Vector3d>& point
     ++c.support;
     const Eigen::Vector2d uv = grid.to_plane(points[i]);
     around.add(uv);
-    if (e.patch.box.contains(uv) && e.patch.cells.contains(grid.index(uv))) patch_consensus.push_back(i);
+    if (detail::in_patch(grid, e.patch, uv)) patch_consensus.push_back(i);
   }
   c.patch_points = patch_consensus.size();
   if (c.support < params.min_support) {
