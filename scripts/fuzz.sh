@@ -9,6 +9,7 @@
 # One target at a time: libFuzzer uses one core per job.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/build_env.sh
 mode=${1:-replay}
 seconds=${2:-30}
 only=${3:-}

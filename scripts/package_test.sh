@@ -15,6 +15,7 @@
 # Build folders sit beside build/ so ccache finds their objects (same depth).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/build_env.sh
 root=$(pwd)
 shared_build=${1:-build}
 jobs=${L2S_JOBS:-$(nproc)}

@@ -12,6 +12,7 @@
 # Usage: scripts/sanitize.sh [asan|tsan|all]   (default all). Any report fails the run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/build_env.sh
 what=${1:-all}
 jobs=${L2S_JOBS:-$(nproc)}
 scripts/setup.sh

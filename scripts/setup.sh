@@ -4,7 +4,8 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ccache pkg-config
+  build-essential cmake ninja-build ccache pkg-config
+  mold  # the linker (cmake/L2sLinker.cmake): links the programs several times faster than ld.bfd
   libeigen3-dev libpcl-dev libopencv-dev libopencv-contrib-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev  # scripts/sanitize.sh and scripts/fuzz.sh: sanitizers and libFuzzer
