@@ -33,7 +33,7 @@ if [ "$mode" = options ]; then
 fi
 if [ ! -d "$build" ]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DL2SCALIB_BUILD_SHARED=OFF \
-    -DL2SCALIB_SANITIZE="address;undefined" -DL2SCALIB_BUILD_BENCHMARKS=OFF -DL2SCALIB_BUILD_EXAMPLES=OFF \
+    -DL2SCALIB_SANITIZE="address;undefined" -DL2SCALIB_PRECOMPILE_HEADERS=OFF -DL2SCALIB_BUILD_BENCHMARKS=OFF -DL2SCALIB_BUILD_EXAMPLES=OFF \
     "${options[@]}" >/dev/null
 fi
 cmake --build "$build" -j "${L2S_JOBS:-$(nproc)}" --target fuzzers

@@ -16,6 +16,8 @@
 #include <l2s/viz/overlay.hpp>
 #include <l2s/pose.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

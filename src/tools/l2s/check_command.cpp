@@ -15,6 +15,8 @@
 #include <l2s/metrics.hpp>
 #include <l2s/viz/overlay.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <memory>

@@ -13,6 +13,8 @@
 #include <l2s/io/image_io.hpp>
 #include <l2s/mono_board_detector.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>

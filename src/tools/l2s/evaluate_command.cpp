@@ -6,6 +6,8 @@
 #include <l2s/io/transform_yaml.hpp>
 #include <l2s/metrics.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <string>

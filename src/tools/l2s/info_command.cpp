@@ -8,6 +8,8 @@
 #include <l2s/metrics.hpp>
 #include <l2s/pose.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -7,6 +7,8 @@
 
 #include <l2s/error.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <exception>
 #include <iostream>
 

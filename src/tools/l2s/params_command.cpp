@@ -6,6 +6,8 @@
 #include <l2s/calibrator.hpp>
 #include <l2s/io/calibrator_yaml.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <memory>
 #include <string>

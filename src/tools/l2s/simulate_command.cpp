@@ -12,6 +12,8 @@
 #include <l2s/sim/scene_yaml.hpp>
 #include <l2s/sim/simulation.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <filesystem>
 #include <iostream>

@@ -10,6 +10,8 @@
 #include <l2s/sim/suite.hpp>
 #include <l2s/sim/suite_results.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <atomic>
 #include <csignal>
 #include <cstdio>
