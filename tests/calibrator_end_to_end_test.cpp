@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 
 namespace {
 
@@ -64,10 +63,6 @@ TEST_P(CalibratorEndToEnd, BothPresetsAreAccurateOnEverySetting) {
 
   const auto tuned_error = l2s::pose_error(tuned_result.T_lidar_camera, truth);
   const auto paper_error = l2s::pose_error(paper_result.T_lidar_camera, truth);
-  std::printf("setting %d: default e_t %.1f mm e_r %.3f deg (%d/%d frames) | paper e_t %.1f mm e_r %.3f deg\n",
-              GetParam(), tuned_error.translation * 1e3, tuned_error.rotation * 180 / M_PI,
-              tuned_result.lidar_frames, tuned_result.camera_frames, paper_error.translation * 1e3,
-              paper_error.rotation * 180 / M_PI);
   expect_within(tuned_error, kDefaultBounds[GetParam() - 1], "default");
   expect_within(paper_error, kPaperBounds[GetParam() - 1], "paper");
 
@@ -113,8 +108,6 @@ TEST_P(CalibratorDenseLidar, Hdl64FindsTheBoardAndCalibrates) {
   ASSERT_TRUE(result.found) << result.reason;
   EXPECT_EQ(result.lidar_frames, config.frames);
   const auto error = l2s::pose_error(result.T_lidar_camera, simulator.T_lidar_camera());
-  std::printf("hdl64 setting %d: e_t %.1f mm e_r %.3f deg\n", GetParam(), error.translation * 1e3,
-              error.rotation * 180 / M_PI);
   // Twice the measured 3.0 mm / 0.047 deg (setting 3) and 0.9 mm / 0.028 deg (setting 6).
   const Bound bound = GetParam() == 3 ? Bound{6.0, 0.094} : Bound{1.8, 0.056};
   expect_within(error, bound, "default");

@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -232,8 +231,6 @@ TEST(CircleFinder, ThicknessModelRemovesObliqueBias) {
   ASSERT_TRUE(without_model.found) << without_model.reason;
   const double e_with = mean_center_error(with_model.centers, scene.true_centers());
   const double e_without = mean_center_error(without_model.centers, scene.true_centers());
-  std::printf("[ measured ] oblique 50 deg, exact edges: centre error %.2f mm with thickness, %.2f mm without\n",
-              1e3 * e_with, 1e3 * e_without);
   EXPECT_LT(e_with, 0.5e-3);
   EXPECT_GT(e_without, 3.0 * e_with);
   EXPECT_GT(e_without, 2e-3);
@@ -255,8 +252,14 @@ struct PipelineSettings {
   CircleFinder::Params circles;
 };
 
-/// Mean centre error over noisy VLP-16 sweeps through the whole lidar chain.
-double pipeline_error(const Scene& scene, const PipelineSettings& settings, int sweeps, int* failures) {
+/// The whole lidar chain over noisy VLP-16 sweeps: in how many it found the
+/// holes, and their mean centre error over those.
+struct PipelineRun {
+  int found = 0;
+  double mean_error = 0.0;  ///< [m], over the sweeps that found the holes
+};
+
+PipelineRun run_pipeline(const Scene& scene, const PipelineSettings& settings, int sweeps) {
   PassThroughFilter::Params box;
   box.min_xyz = Eigen::Vector3d(0.5, -3.0, -0.9);
   box.max_xyz = Eigen::Vector3d(5.0, 3.0, 2.0);
@@ -265,7 +268,7 @@ double pipeline_error(const Scene& scene, const PipelineSettings& settings, int 
   const DiscontinuityFilter discontinuity(settings.discontinuity);
   const CircleFinder finder(settings.circles);
   double sum = 0.0;
-  int found = 0;
+  PipelineRun run;
   for (int seed = 0; seed < sweeps; ++seed) {
     const LidarCloud sweep = test::scan(scene, test::vlp16(), 1000 + seed);
     const LidarCloud kept = select(sweep, pass.filter(sweep.points).kept);
@@ -276,10 +279,10 @@ double pipeline_error(const Scene& scene, const PipelineSettings& settings, int 
     const auto holes = finder.find(edges.edges, plane.plane, Eigen::Vector3d::UnitZ(), scene.target);
     if (!holes.found) continue;
     sum += mean_center_error(holes.centers, scene.true_centers());
-    ++found;
+    ++run.found;
   }
-  *failures = sweeps - found;
-  return found ? sum / found : 1.0;
+  if (run.found > 0) run.mean_error = sum / run.found;
+  return run;
 }
 
 TEST(CircleFinder, JointThickFitBeatsPaperOnNoisySweeps) {
@@ -288,15 +291,14 @@ TEST(CircleFinder, JointThickFitBeatsPaperOnNoisySweeps) {
   const int sweeps = 20;
   PipelineSettings refined;
   PipelineSettings paper{DiscontinuityFilter::Params::paper(), CircleFinder::Params::paper()};
-  int refined_failures = 0, paper_failures = 0;
-  const double e_refined = pipeline_error(scene, refined, sweeps, &refined_failures);
-  const double e_paper = pipeline_error(scene, paper, sweeps, &paper_failures);
-  std::printf("[ measured ] VLP-16, sigma 8 mm, %d sweeps: mean centre error %.2f mm refined (%d failed), "
-              "%.2f mm paper (%d failed)\n",
-              sweeps, 1e3 * e_refined, refined_failures, 1e3 * e_paper, paper_failures);
-  EXPECT_EQ(refined_failures, 0);
-  EXPECT_LE(e_refined, 3e-3);
-  EXPECT_GT(e_paper, 1.5 * e_refined);
+  const PipelineRun with_refinement = run_pipeline(scene, refined, sweeps);
+  const PipelineRun with_paper = run_pipeline(scene, paper, sweeps);
+  EXPECT_EQ(with_refinement.found, sweeps);
+  // The paper's method finds the holes too (the comparison is of accuracy,
+  // not of what either finds), in at least half of the sweeps.
+  ASSERT_GE(with_paper.found, sweeps / 2);
+  EXPECT_LE(with_refinement.mean_error, 3e-3);
+  EXPECT_GT(with_paper.mean_error, 1.5 * with_refinement.mean_error);
 }
 
 }  // namespace

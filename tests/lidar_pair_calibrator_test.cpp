@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 namespace l2s {
@@ -70,7 +69,6 @@ TEST(LidarPairCalibrator, Vlp16ToHdl32ThreePosesMeetsAcceptance) {
             << "setting " << setting << ": moving frame " << f << " in a pose";
     e_t.push_back(run.error.translation);
     e_r.push_back(run.error.rotation * 180.0 / M_PI);
-    std::printf("setting %d: e_t = %.2f mm, e_r = %.4f deg\n", setting, e_t.back() * 1e3, e_r.back());
   }
   EXPECT_LE(median(e_t), 0.002);
   EXPECT_LE(median(e_r), 0.05);
@@ -101,8 +99,6 @@ TEST(LidarPairCalibrator, RingFreeLidar2IsAccumulated) {
   ASSERT_TRUE(run.result.found) << run.result.reason;
   EXPECT_EQ(run.result.lidar2_frames, 1);
   EXPECT_GE(run.result.lidar_frames, 15);
-  std::printf("avia: e_t = %.2f mm, e_r = %.4f deg\n", run.error.translation * 1e3,
-              run.error.rotation * 180.0 / M_PI);
   EXPECT_LE(run.error.translation, 0.01);
   EXPECT_LE(run.error.rotation * 180.0 / M_PI, 0.3);
 }
@@ -116,8 +112,6 @@ TEST(LidarPairCalibrator, RingFreeWindowsFollowTheBoardPoses) {
   ASSERT_TRUE(run.result.found) << run.result.reason;
   EXPECT_EQ(run.result.poses_used(), 3);
   EXPECT_EQ(run.result.lidar2_frames, 3);
-  std::printf("avia, 3 poses: e_t = %.2f mm, e_r = %.4f deg\n", run.error.translation * 1e3,
-              run.error.rotation * 180.0 / M_PI);
   EXPECT_LE(run.error.translation, 0.008);
   EXPECT_LE(run.error.rotation * 180.0 / M_PI, 0.15);
 }

@@ -151,8 +151,6 @@ TEST_P(OffsetBeams, SpreadInElevationAtCloseRange) {
   cloud.ring.clear();
   const int recovered = io::recover_rings(cloud);
   RecordProperty("recovered_rings", recovered);
-  std::printf("%s: ring recovery from elevations finds %d rings for %d lasers\n", GetParam().model.c_str(),
-              recovered, GetParam().beams);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, OffsetBeams,
