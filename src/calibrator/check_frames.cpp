@@ -1,4 +1,6 @@
-// The check's observations from the branch traces (check_frames.hpp).
+// The check's observations from the branch traces (check_frames.hpp). It
+// reads the branches' traces and runs the branches, so it lives with them,
+// above the check, which sees only the observations it makes.
 
 #include <l2s/check_frames.hpp>
 

@@ -1,0 +1,5 @@
+#include <l2s/high.hpp>
+
+#include "low/low.hpp"
+
+int high() { return low() + 1; }
