@@ -23,6 +23,7 @@ RESULT_CONDITION = re.compile(r"\b(found|success|ok)\b")
 ASSERTION = re.compile(r"\b(?:(?:EXPECT|ASSERT)_[A-Z_]+|FAIL|ADD_FAILURE|GTEST_SKIP)\s*\(")
 TEST_START = re.compile(r"\b(TEST|TEST_F|TEST_P|TYPED_TEST|TYPED_TEST_P)\s*\(([^)]*)\)\s*\{")
 LEAVES = re.compile(r"^\s*(continue|return|break)\b")
+BRANCH_OR_ASSERTION = re.compile(r"\b(if|else)\b|" + ASSERTION.pattern)
 
 
 def strip_comments_and_strings(text):
@@ -86,9 +87,15 @@ def statement_end(text, i):
 def count_assertions(body, guarded):
     """(guarded, unguarded) assertion counts in `body`; `guarded`: all of it is."""
     counts = [0, 0]
+
+    def add(part, part_guarded):
+        g, u = count_assertions(part, part_guarded)
+        counts[0] += g
+        counts[1] += u
+
     i = 0
     while i < len(body):
-        match = re.compile(r"\b(if|else)\b|" + ASSERTION.pattern).search(body, i)
+        match = BRANCH_OR_ASSERTION.search(body, i)
         if not match:
             break
         word = match.group(1)
@@ -102,23 +109,17 @@ def count_assertions(body, guarded):
             condition_guards = guarded or bool(RESULT_CONDITION.search(body[open_paren:close]))
             end = statement_end(body, close)
             branch = body[close:end]
-            g, u = count_assertions(branch, condition_guards)
-            counts[0] += g
-            counts[1] += u
+            add(branch, condition_guards)
             i = end
             else_match = re.match(r"\s*else\b", body[i:])
             if else_match:
                 else_end = statement_end(body, i + else_match.end())
-                g, u = count_assertions(body[i + else_match.end():else_end], condition_guards)
-                counts[0] += g
-                counts[1] += u
+                add(body[i + else_match.end():else_end], condition_guards)
                 i = else_end
             # `if (!found) continue;`: the rest of the block runs only with a result.
             if condition_guards and not guarded and LEAVES.match(branch.strip(" \t\n{")):
                 rest_end = block_end(body, i)
-                g, u = count_assertions(body[i:rest_end], True)
-                counts[0] += g
-                counts[1] += u
+                add(body[i:rest_end], True)
                 i = rest_end
             continue
         i = match.end()  # a stray `else` (its `if` handled it)

@@ -8,8 +8,9 @@ implements (`#include <l2s/...>`). A public header l2s/.../NAME.hpp belongs
 to the folder of NAME.cpp; without a NAME.cpp, to the folder of the sources
 that include it first, as a source includes its own header (STYLE.md), when
 they have no header of their own name and share a word of the header's
-(pcd_reader.cpp and pcd_writer.cpp implement l2s/io/pcd.hpp). A public header that no source implements (plain
-types, errors, export macros) belongs to no folder. src/tools is the top:
+(pcd_reader.cpp and pcd_writer.cpp implement l2s/io/pcd.hpp). A public
+header that no source implements (plain types, errors, export macros)
+belongs to no folder. src/tools is the top:
 nothing may include it, so it is left out.
 
 Usage: check_layers.py SRC_DIR INCLUDE_DIR            (exit 1 on a cycle)
@@ -47,9 +48,9 @@ def stem(path):
     return os.path.splitext(os.path.basename(path))[0]
 
 
-def public_header_owners(src_dir, include_dir):
-    """Public header (as included, "l2s/...") -> the folder that implements it."""
-    all_sources = list(sources(src_dir))
+def public_header_owners(all_sources, include_dir):
+    """Public header (as included, "l2s/...") -> the folder of `all_sources`
+    ((folder, path) pairs) that implements it."""
     implementations = {stem(path): folder for folder, path in all_sources if path.endswith((".cpp", ".cc"))}
     header_stems = {stem(path) for _, path in all_sources if path.endswith((".hpp", ".h"))}
     for root, _, files in os.walk(include_dir):
@@ -71,10 +72,11 @@ def public_header_owners(src_dir, include_dir):
 
 
 def dependency_graph(src_dir, include_dir):
-    owners = public_header_owners(src_dir, include_dir)
-    folders = {folder for folder, _ in sources(src_dir)}
+    all_sources = list(sources(src_dir))
+    owners = public_header_owners(all_sources, include_dir)
+    folders = {folder for folder, _ in all_sources}
     edges = {}  # (from, to) -> an example "file includes header"
-    for folder, path in sources(src_dir):
+    for folder, path in all_sources:
         for kind, header in includes(path):
             if kind == '"':
                 target = header.split("/")[0] if "/" in header else folder
