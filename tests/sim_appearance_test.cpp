@@ -1,8 +1,9 @@
 // Scene looks: a brick wall repeats at the brick period, shadows darken
 // exactly what a shadow ray says (also through and behind the holes), wood
-// grain runs along the board, a low-contrast board is close to its
-// background, and the camera response (exposure, vignetting, blur, gamma,
-// colour) does what its fields say.
+// grain runs along the board, a speckle print gives the face edges in every
+// direction that fade to gray where the dots are finer than a pixel, a
+// low-contrast board is close to its background, and the camera response
+// (exposure, vignetting, blur, gamma, colour) does what its fields say.
 
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/stereo_renderer.hpp>
@@ -190,13 +191,17 @@ TEST(Appearance, HardShadowsDarkenExactlyWhatTheSunCannotSee) {
   EXPECT_EQ(darker, static_cast<int>(split.shadowed.size()));
 }
 
-TEST(Appearance, WoodGrainRunsAlongTheBoard) {
-  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
-  Appearance wood;
-  wood.board = BoardTexture::WoodGrain;
-  const CleanImage image = render_left(scene, wood);
-  double along = 0.0, across = 0.0;
-  int n = 0;
+/// Mean absolute differences between neighbouring pixels of the board's face,
+/// along the image rows and across them, over pixels 2 px or more from the
+/// face's edges and holes.
+struct FaceGradients {
+  double along = 0.0;
+  double across = 0.0;
+  int pixels = 0;
+};
+
+FaceGradients face_gradients(const CleanImage& image) {
+  FaceGradients g;
   for (int v = 2; v + 2 < image.height; ++v)
     for (int u = 2; u + 2 < image.width; ++u) {
       bool inside = true;
@@ -204,12 +209,58 @@ TEST(Appearance, WoodGrainRunsAlongTheBoard) {
         inside = inside && image.surface_at(u + d, v) == SurfaceId::Board &&
                  image.surface_at(u, v + d) == SurfaceId::Board;
       if (!inside) continue;
-      along += std::abs(image.at(u + 1, v) - image.at(u, v));
-      across += std::abs(image.at(u, v + 1) - image.at(u, v));
-      ++n;
+      g.along += std::abs(image.at(u + 1, v) - image.at(u, v));
+      g.across += std::abs(image.at(u, v + 1) - image.at(u, v));
+      ++g.pixels;
     }
-  ASSERT_GT(n, 20000);
-  EXPECT_GT(across, 2.0 * along) << "streaks must run along the board's long side";
+  if (g.pixels > 0) g.along /= g.pixels, g.across /= g.pixels;
+  return g;
+}
+
+TEST(Appearance, WoodGrainRunsAlongTheBoard) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  Appearance wood;
+  wood.board = BoardTexture::WoodGrain;
+  const FaceGradients g = face_gradients(render_left(scene, wood));
+  ASSERT_GT(g.pixels, 20000);
+  EXPECT_GT(g.across, 2.0 * g.along) << "streaks must run along the board's long side";
+}
+
+TEST(Appearance, SpecklePrintGivesTheFaceFarMoreEdgesThanTheMatteFace) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  Appearance speckle;
+  speckle.board = BoardTexture::Speckle;
+  const CleanImage printed = render_left(scene, speckle);
+  const FaceGradients matte = face_gradients(render_left(scene, Appearance{}));
+  const FaceGradients print = face_gradients(printed);
+  ASSERT_GT(print.pixels, 20000);
+  ASSERT_GT(matte.pixels, 20000);
+  EXPECT_GT(print.along, 5.0 * matte.along);
+  EXPECT_GT(print.across, 5.0 * matte.across);
+  // Dots, not stripes: as many edges along the rows as across them.
+  EXPECT_NEAR(print.along / print.across, 1.0, 0.2);
+
+  // Dark dots on light paper: the face's darkest tenth far below its median.
+  std::vector<float> face;
+  for (int v = 0; v < printed.height; ++v)
+    for (int u = 0; u < printed.width; ++u)
+      if (printed.surface_at(u, v) == SurfaceId::Board) face.push_back(printed.at(u, v));
+  std::sort(face.begin(), face.end());
+  ASSERT_FALSE(face.empty());
+  EXPECT_LT(face[face.size() / 10], 0.6 * face[face.size() / 2]);
+}
+
+TEST(Appearance, SpeckleFinerThanAPixelFadesToGrayInsteadOfAliasing) {
+  Appearance speckle;
+  speckle.board = BoardTexture::Speckle;
+  const auto board_at = [](double distance) {
+    return make_scene(Target{}, BoardPose{distance, 0.0, 0.0, 0.0, 0.0, 0.0});
+  };
+  const FaceGradients near = face_gradients(render_left(board_at(2.0), speckle));
+  const FaceGradients far = face_gradients(render_left(board_at(8.0), speckle));
+  ASSERT_GT(far.pixels, 500);
+  // At 8 m a pixel spans about two dots' cells: their contrast averages out.
+  EXPECT_LT(far.along, 0.5 * near.along);
 }
 
 double mean_of(const CleanImage& image, SurfaceId surface) {
@@ -335,6 +386,8 @@ TEST(Appearance, ValidationNamesTheBadField) {
   look.to_light = Eigen::Vector3d(1.0, 1.0, 0.0);
   EXPECT_THROW(look.validate(), ParamError);
   EXPECT_EQ(board_texture_from_name("wood", "x"), BoardTexture::WoodGrain);
+  EXPECT_EQ(board_texture_from_name("speckle", "x"), BoardTexture::Speckle);
+  EXPECT_THROW(board_texture_from_name("speckles", "appearance.board_texture"), ParamError);
   EXPECT_THROW(background_from_name("brick", "appearance.background"), ParamError);
   EXPECT_TRUE(Appearance{}.is_default());
 }

@@ -19,6 +19,7 @@ const char* name_of(BoardTexture texture) {
   switch (texture) {
     case BoardTexture::WoodGrain: return "wood";
     case BoardTexture::LowContrast: return "low-contrast";
+    case BoardTexture::Speckle: return "speckle";
     case BoardTexture::Matte: break;
   }
   return "matte";
@@ -37,9 +38,10 @@ const char* name_of(Background background) {
 const char* name_of(Sky sky) { return sky == Sky::Daylight ? "daylight" : "uniform"; }
 
 BoardTexture board_texture_from_name(const std::string& name, const std::string& field) {
-  for (BoardTexture t : {BoardTexture::Matte, BoardTexture::WoodGrain, BoardTexture::LowContrast})
+  for (BoardTexture t :
+       {BoardTexture::Matte, BoardTexture::WoodGrain, BoardTexture::LowContrast, BoardTexture::Speckle})
     if (name == name_of(t)) return t;
-  throw ParamError(field, "unknown board texture '" + name + "' (matte, wood, low-contrast)");
+  throw ParamError(field, "unknown board texture '" + name + "' (matte, wood, low-contrast, speckle)");
 }
 
 Background background_from_name(const std::string& name, const std::string& field) {

@@ -3,11 +3,13 @@
 // with thin grout, plywood grain a few millimetres apart along the board's
 // long side. Fine detail is filtered by the pixel footprint w on the surface:
 // a joint's coverage of [x - w/2, x + w/2] is integrated exactly, and a noise
-// octave of wavelength L keeps exp(-2 pi^2 (w/2)^2 / L^2) of its amplitude
-// (a Gaussian pixel's response to a sinusoid).
+// octave keeps what footprint_filter.hpp says of its amplitude. Printed board
+// faces are in board_faces.cpp.
 
 #include "sim/materials.hpp"
 
+#include "sim/board_faces.hpp"
+#include "sim/footprint_filter.hpp"
 #include "sim/random.hpp"
 #include "sim/texture.hpp"
 
@@ -25,19 +27,13 @@ Eigen::Array3d tint(double b, double g, double r) {
   return Eigen::Array3d(b, g, r) / luma;
 }
 
-/// Share of a sinusoid of wavelength `wavelength` [m] a pixel of `footprint` [m] keeps.
-double keep(double footprint, double wavelength) {
-  const double ratio = 0.5 * footprint / wavelength;
-  return std::exp(-2.0 * 9.869604401089358 * ratio * ratio);
-}
-
 /// fractal_noise with each octave attenuated by the footprint (not renormalised,
 /// so unresolvable detail fades to the mean instead of aliasing).
 double filtered_noise(double x, double y, double wavelength, int octaves, std::uint64_t seed,
                       double footprint) {
   double sum = 0.0, norm = 0.0, amplitude = 1.0, w = wavelength;
   for (int k = 0; k < octaves; ++k) {
-    const double kept = keep(footprint, w);
+    const double kept = kept_amplitude(footprint, w);
     if (kept > 1e-3) sum += amplitude * kept * value_noise(x / w, y / w, seed + 0x632BE5ABULL * (k + 1));
     norm += amplitude;
     amplitude *= 0.5;
@@ -99,10 +95,10 @@ Albedo wood(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed) {
   const double x = uv.x();
   const double y = uv.y() + 0.006 * value_noise(x / 0.35, uv.y() / 0.06, seed ^ 0x11ULL);
   constexpr double kRing = 0.009, kFine = 0.003, kStreak = 0.012, kBroad = 0.04;  // [m] across the grain
-  const double rings = std::sin(kTwoPi * y / kRing) * keep(footprint, kRing);
-  const double fine = value_noise(x / 0.6, y / kFine, seed ^ 0x22ULL) * keep(footprint, kFine);
-  const double streaks = value_noise(x / 0.8, y / kStreak, seed ^ 0x44ULL) * keep(footprint, kStreak);
-  const double broad = value_noise(x / 0.25, y / kBroad, seed ^ 0x33ULL) * keep(footprint, kBroad);
+  const double rings = std::sin(kTwoPi * y / kRing) * kept_amplitude(footprint, kRing);
+  const double fine = value_noise(x / 0.6, y / kFine, seed ^ 0x22ULL) * kept_amplitude(footprint, kFine);
+  const double streaks = value_noise(x / 0.8, y / kStreak, seed ^ 0x44ULL) * kept_amplitude(footprint, kStreak);
+  const double broad = value_noise(x / 0.25, y / kBroad, seed ^ 0x33ULL) * kept_amplitude(footprint, kBroad);
   return Albedo{std::clamp(0.50 + 0.07 * rings + 0.06 * fine + 0.09 * streaks + 0.06 * broad, 0.02, 0.98),
                 tint(0.50, 0.80, 1.30)};
 }
@@ -166,6 +162,9 @@ Albedo Materials::board(const Hit& hit, double footprint) const {
       const double n = filtered_noise(hit.uv.x(), hit.uv.y(), 0.05, 3, s, footprint);
       return Albedo{std::clamp(base + 0.10 * n, 0.02, 0.98), Eigen::Array3d::Ones()};
     }
+    case BoardTexture::Speckle:
+      return hit.part == static_cast<std::uint8_t>(BoardPart::Front) ? speckle_print(hit.uv, footprint, seed_)
+                                                                      : unprinted_board();
   }
   return suite_look(hit, seed_);
 }

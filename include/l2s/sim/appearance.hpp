@@ -18,6 +18,7 @@ enum class BoardTexture {
   Matte,        ///< bright, fine low-contrast mottling (the paper suite's board)
   WoodGrain,    ///< plywood: streaks along the board's long side, warm colour
   LowContrast,  ///< matte, but its brightness close to the background's
+  Speckle,      ///< a fine speckle print: dark dots of a few mm on white paper, for stereo matching
 };
 
 /// The wall behind the board (the geometry puts it 0.5..6 m behind).
@@ -34,7 +35,7 @@ enum class Sky {
   Daylight,  ///< brighter at the horizon, bluish towards the zenith
 };
 
-/// Names for files and the command line: matte|wood|low-contrast,
+/// Names for files and the command line: matte|wood|low-contrast|speckle,
 /// textured|bricks|tiles|plain, uniform|daylight. Parsers throw ParamError naming `field`.
 L2S_SIM_EXPORT const char* name_of(BoardTexture texture);
 L2S_SIM_EXPORT const char* name_of(Background background);
