@@ -1,7 +1,9 @@
 // Scene looks: a brick wall repeats at the brick period, shadows darken
 // exactly what a shadow ray says (also through and behind the holes), wood
 // grain runs along the board, a speckle print gives the face edges in every
-// direction that fade to gray where the dots are finer than a pixel, a
+// direction that fade to gray where the dots are finer than a pixel, a noise
+// print is coarser, chipboard shows warm flakes at every angle, a black board
+// is darker than its wall and a white one matches a white wall, a
 // low-contrast board is close to its background, and the camera response
 // (exposure, vignetting, blur, gamma, colour) does what its fields say.
 
@@ -272,6 +274,77 @@ double mean_of(const CleanImage& image, SurfaceId surface) {
   return n ? sum / n : 0.0;
 }
 
+/// Gray values of the board's front-facing pixels.
+std::vector<double> face_values(const CleanImage& image) {
+  std::vector<double> values;
+  for (int v = 0; v < image.height; ++v)
+    for (int u = 0; u < image.width; ++u)
+      if (image.surface_at(u, v) == SurfaceId::Board) values.push_back(image.at(u, v));
+  return values;
+}
+
+double deviation_of(const std::vector<double>& values) {
+  double mean = 0.0, square = 0.0;
+  for (double x : values) mean += x;
+  mean /= std::max<std::size_t>(values.size(), 1);
+  for (double x : values) square += (x - mean) * (x - mean);
+  return std::sqrt(square / std::max<std::size_t>(values.size(), 1));
+}
+
+TEST(Appearance, NoisePrintIsCoarserThanTheSpeckleAndAsStrong) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  Appearance speckle, noise;
+  speckle.board = BoardTexture::Speckle;
+  noise.board = BoardTexture::NoisePrint;
+  const CleanImage fine = render_left(scene, speckle), coarse = render_left(scene, noise);
+  const FaceGradients matte = face_gradients(render_left(scene, Appearance{}));
+  const FaceGradients g = face_gradients(coarse);
+  ASSERT_GT(g.pixels, 20000);
+  EXPECT_GT(g.along, 3.0 * matte.along);
+  // As much contrast as the speckle, in features several times larger: a
+  // smaller step between neighbours for the same spread of gray.
+  const double coarse_spread = deviation_of(face_values(coarse)), fine_spread = deviation_of(face_values(fine));
+  EXPECT_GT(coarse_spread, 0.7 * fine_spread);
+  EXPECT_LT(g.along / coarse_spread, 0.5 * face_gradients(fine).along / fine_spread);
+}
+
+TEST(Appearance, ChipboardShowsFlakesOfWood) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  Appearance chipboard;
+  chipboard.board = BoardTexture::Chipboard;
+  const FaceGradients matte = face_gradients(render_left(scene, Appearance{}));
+  const FaceGradients g = face_gradients(render_left(scene, chipboard));
+  ASSERT_GT(g.pixels, 20000);
+  EXPECT_GT(g.along, 2.5 * matte.along);
+  EXPECT_NEAR(g.along / g.across, 1.0, 0.2) << "flakes lie at every angle";
+  // Wood: warmer than neutral in a colour image.
+  chipboard.colour = true;
+  const CleanImage colour = render_left(scene, chipboard);
+  double blue = 0.0, red = 0.0;
+  for (int v = 0; v < colour.height; ++v)
+    for (int u = 0; u < colour.width; ++u)
+      if (colour.surface_at(u, v) == SurfaceId::Board) blue += colour.at(u, v, 0), red += colour.at(u, v, 2);
+  EXPECT_GT(red, 1.5 * blue);
+}
+
+TEST(Appearance, ABlackBoardIsDarkerThanItsWallAndAWhiteOneMatchesAWhiteWall) {
+  const Scene scene = make_scene(Target{}, BoardPose{3.0, 0.1, 0.0, 0.2, 0.0, 0.0});
+  for (Background background : {Background::Plain, Background::White, Background::Tiles}) {
+    Appearance look;
+    look.background = background;
+    look.board = BoardTexture::Black;
+    const CleanImage image = render_left(scene, look);
+    EXPECT_LT(mean_of(image, SurfaceId::Board), 0.3 * mean_of(image, SurfaceId::Wall)) << name_of(background);
+  }
+  Appearance white;
+  white.board = BoardTexture::White;
+  white.background = Background::White;
+  const CleanImage image = render_left(scene, white);
+  EXPECT_LT(std::abs(mean_of(image, SurfaceId::Board) - mean_of(image, SurfaceId::Wall)), 0.08);
+  const FaceGradients matte = face_gradients(render_left(scene, Appearance{}));
+  EXPECT_LT(face_gradients(image).along, 2.0 * matte.along) << "painted white, almost no texture";
+}
+
 TEST(Appearance, LowContrastBoardIsCloseToItsBackground) {
   const Scene scene = make_scene(Target{}, BoardPose{3.0, 0.1, 0.0, 0.2, 0.0, 0.0});
   for (Background background : {Background::Textured, Background::Bricks, Background::Tiles, Background::Plain}) {
@@ -387,6 +460,9 @@ TEST(Appearance, ValidationNamesTheBadField) {
   EXPECT_THROW(look.validate(), ParamError);
   EXPECT_EQ(board_texture_from_name("wood", "x"), BoardTexture::WoodGrain);
   EXPECT_EQ(board_texture_from_name("speckle", "x"), BoardTexture::Speckle);
+  for (const std::string& name : board_texture_names()) EXPECT_EQ(name_of(board_texture_from_name(name, "x")), name);
+  for (const std::string& name : background_names()) EXPECT_EQ(name_of(background_from_name(name, "x")), name);
+  EXPECT_EQ(board_texture_names().size(), 8u);
   EXPECT_THROW(board_texture_from_name("speckles", "appearance.board_texture"), ParamError);
   EXPECT_THROW(background_from_name("brick", "appearance.background"), ParamError);
   EXPECT_TRUE(Appearance{}.is_default());

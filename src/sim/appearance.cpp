@@ -15,11 +15,32 @@ void check_range(double value, double lo, double hi, const char* field, const ch
 
 }  // namespace
 
+namespace {
+
+constexpr BoardTexture kBoardTextures[] = {BoardTexture::Matte,   BoardTexture::WoodGrain,  BoardTexture::LowContrast,
+                                           BoardTexture::Speckle, BoardTexture::NoisePrint, BoardTexture::Chipboard,
+                                           BoardTexture::Black,   BoardTexture::White};
+constexpr Background kBackgrounds[] = {Background::Textured, Background::Bricks, Background::Tiles, Background::Plain,
+                                       Background::White};
+
+/// "a, b, c" for an error message.
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+}  // namespace
+
 const char* name_of(BoardTexture texture) {
   switch (texture) {
     case BoardTexture::WoodGrain: return "wood";
     case BoardTexture::LowContrast: return "low-contrast";
     case BoardTexture::Speckle: return "speckle";
+    case BoardTexture::NoisePrint: return "noise-print";
+    case BoardTexture::Chipboard: return "chipboard";
+    case BoardTexture::Black: return "black";
+    case BoardTexture::White: return "white";
     case BoardTexture::Matte: break;
   }
   return "matte";
@@ -30,24 +51,36 @@ const char* name_of(Background background) {
     case Background::Bricks: return "bricks";
     case Background::Tiles: return "tiles";
     case Background::Plain: return "plain";
+    case Background::White: return "white";
     case Background::Textured: break;
   }
   return "textured";
 }
 
+std::vector<std::string> board_texture_names() {
+  std::vector<std::string> names;
+  for (BoardTexture t : kBoardTextures) names.emplace_back(name_of(t));
+  return names;
+}
+
+std::vector<std::string> background_names() {
+  std::vector<std::string> names;
+  for (Background b : kBackgrounds) names.emplace_back(name_of(b));
+  return names;
+}
+
 const char* name_of(Sky sky) { return sky == Sky::Daylight ? "daylight" : "uniform"; }
 
 BoardTexture board_texture_from_name(const std::string& name, const std::string& field) {
-  for (BoardTexture t :
-       {BoardTexture::Matte, BoardTexture::WoodGrain, BoardTexture::LowContrast, BoardTexture::Speckle})
+  for (BoardTexture t : kBoardTextures)
     if (name == name_of(t)) return t;
-  throw ParamError(field, "unknown board texture '" + name + "' (matte, wood, low-contrast, speckle)");
+  throw ParamError(field, "unknown board texture '" + name + "' (" + listed(board_texture_names()) + ")");
 }
 
 Background background_from_name(const std::string& name, const std::string& field) {
-  for (Background b : {Background::Textured, Background::Bricks, Background::Tiles, Background::Plain})
+  for (Background b : kBackgrounds)
     if (name == name_of(b)) return b;
-  throw ParamError(field, "unknown background '" + name + "' (textured, bricks, tiles, plain)");
+  throw ParamError(field, "unknown background '" + name + "' (" + listed(background_names()) + ")");
 }
 
 Sky sky_from_name(const std::string& name, const std::string& field) {

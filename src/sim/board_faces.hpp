@@ -15,6 +15,20 @@ namespace l2s::sim::detail {
 /// 2-4 mm radius, one at a random place in each 8 mm cell, on white paper.
 Albedo speckle_print(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
 
+/// A coarse random-noise print: blotches of 1-3 cm from black to white, as
+/// printed for stereo matching at longer range.
+Albedo noise_print(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
+
+/// Oriented strand board: flakes of wood 4-8 cm long and 1.5-3 cm wide at
+/// random angles, each of its own brightness, overlapping, with dark resin
+/// between them.
+Albedo chipboard(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
+
+/// A board painted matte black (reflectance 0.05), or matte white (0.86):
+/// almost no texture of its own.
+Albedo black_paint(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
+Albedo white_paint(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
+
 /// The board's edges, back and hole walls behind a printed front: plain
 /// white foam board.
 Albedo unprinted_board();

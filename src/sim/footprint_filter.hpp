@@ -4,7 +4,10 @@
 // component of wavelength L by what a Gaussian pixel of footprint w keeps of a
 // sinusoid, exp(-2 pi^2 (w/2)^2 / L^2).
 
+#include "sim/texture.hpp"
+
 #include <cmath>
+#include <cstdint>
 
 namespace l2s::sim::detail {
 
@@ -12,6 +15,21 @@ namespace l2s::sim::detail {
 inline double kept_amplitude(double footprint, double wavelength) {
   const double ratio = 0.5 * footprint / wavelength;
   return std::exp(-2.0 * 9.869604401089358 * ratio * ratio);
+}
+
+/// fractal_noise with each octave attenuated by the footprint (not renormalised,
+/// so unresolvable detail fades to the mean instead of aliasing).
+inline double filtered_noise(double x, double y, double wavelength, int octaves, std::uint64_t seed,
+                             double footprint) {
+  double sum = 0.0, norm = 0.0, amplitude = 1.0, w = wavelength;
+  for (int k = 0; k < octaves; ++k) {
+    const double kept = kept_amplitude(footprint, w);
+    if (kept > 1e-3) sum += amplitude * kept * value_noise(x / w, y / w, seed + 0x632BE5ABULL * (k + 1));
+    norm += amplitude;
+    amplitude *= 0.5;
+    w *= 0.5;
+  }
+  return sum / norm;
 }
 
 }  // namespace l2s::sim::detail

@@ -21,27 +21,6 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-/// A tint (B, G, R) scaled to luma 1.
-Eigen::Array3d tint(double b, double g, double r) {
-  const double luma = 0.114 * b + 0.587 * g + 0.299 * r;
-  return Eigen::Array3d(b, g, r) / luma;
-}
-
-/// fractal_noise with each octave attenuated by the footprint (not renormalised,
-/// so unresolvable detail fades to the mean instead of aliasing).
-double filtered_noise(double x, double y, double wavelength, int octaves, std::uint64_t seed,
-                      double footprint) {
-  double sum = 0.0, norm = 0.0, amplitude = 1.0, w = wavelength;
-  for (int k = 0; k < octaves; ++k) {
-    const double kept = kept_amplitude(footprint, w);
-    if (kept > 1e-3) sum += amplitude * kept * value_noise(x / w, y / w, seed + 0x632BE5ABULL * (k + 1));
-    norm += amplitude;
-    amplitude *= 0.5;
-    w *= 0.5;
-  }
-  return sum / norm;
-}
-
 /// Hash of two cell indices, uniform in [-1, 1].
 double cell_hash(std::int64_t i, std::int64_t j, std::uint64_t seed) {
   const std::uint64_t h = mix64(seed ^ mix64(static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL +
@@ -134,6 +113,7 @@ Materials::Materials(const Appearance& appearance, std::uint64_t seed)
     }
     case Background::Tiles: background_gray_ = 0.70; break;
     case Background::Plain: background_gray_ = 0.62; break;
+    case Background::White: background_gray_ = 0.85; break;
   }
 }
 
@@ -163,8 +143,14 @@ Albedo Materials::board(const Hit& hit, double footprint) const {
       return Albedo{std::clamp(base + 0.10 * n, 0.02, 0.98), Eigen::Array3d::Ones()};
     }
     case BoardTexture::Speckle:
-      return hit.part == static_cast<std::uint8_t>(BoardPart::Front) ? speckle_print(hit.uv, footprint, seed_)
-                                                                      : unprinted_board();
+    case BoardTexture::NoisePrint: {
+      if (hit.part != static_cast<std::uint8_t>(BoardPart::Front)) return unprinted_board();
+      return look_.board == BoardTexture::Speckle ? speckle_print(hit.uv, footprint, seed_)
+                                                  : noise_print(hit.uv, footprint, seed_);
+    }
+    case BoardTexture::Chipboard: return chipboard(hit.uv, footprint, seed_);
+    case BoardTexture::Black: return black_paint(hit.uv, footprint, seed_);
+    case BoardTexture::White: return white_paint(hit.uv, footprint, seed_);
   }
   return suite_look(hit, seed_);
 }
@@ -183,6 +169,11 @@ Albedo Materials::wall(const Hit& hit, double footprint) const {
       const double n = 0.02 * filtered_noise(hit.uv.x(), hit.uv.y(), 1.5, 2, s, footprint) +
                        0.006 * filtered_noise(hit.uv.x(), hit.uv.y(), 0.05, 2, s ^ 1ULL, footprint);
       return Albedo{0.62 + n, tint(0.92, 1.0, 1.05)};
+    }
+    case Background::White: {
+      const double n = 0.015 * filtered_noise(hit.uv.x(), hit.uv.y(), 1.5, 2, s, footprint) +
+                       0.005 * filtered_noise(hit.uv.x(), hit.uv.y(), 0.05, 2, s ^ 1ULL, footprint);
+      return Albedo{0.85 + n, tint(0.98, 1.0, 1.01)};
     }
   }
   return suite_look(hit, seed_);

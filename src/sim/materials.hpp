@@ -22,6 +22,12 @@ struct Albedo {
   Eigen::Array3d tint = Eigen::Array3d::Ones();
 };
 
+/// A tint (B, G, R) scaled to luma 1.
+inline Eigen::Array3d tint(double b, double g, double r) {
+  const double luma = 0.114 * b + 0.587 * g + 0.299 * r;
+  return Eigen::Array3d(b, g, r) / luma;
+}
+
 class Materials {
  public:
   Materials(const Appearance& appearance, std::uint64_t seed);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace l2s::sim {
 
@@ -19,6 +20,10 @@ enum class BoardTexture {
   WoodGrain,    ///< plywood: streaks along the board's long side, warm colour
   LowContrast,  ///< matte, but its brightness close to the background's
   Speckle,      ///< a fine speckle print: dark dots of a few mm on white paper, for stereo matching
+  NoisePrint,   ///< a coarse random-noise print: black and white blotches of 1-3 cm
+  Chipboard,    ///< oriented strand board: overlapping wood flakes of a few cm at random angles
+  Black,        ///< painted matte black: the board darker than most walls (inverted contrast)
+  White,        ///< painted matte white, almost textureless (before a white wall: hardly any contrast)
 };
 
 /// The wall behind the board (the geometry puts it 0.5..6 m behind).
@@ -27,6 +32,7 @@ enum class Background {
   Bricks,    ///< running-bond bricks with mortar joints: repetitive
   Tiles,     ///< square tiles with grout lines: repetitive in both directions
   Plain,     ///< painted wall, almost no texture
+  White,     ///< painted white wall, almost no texture
 };
 
 /// What rays that hit nothing see.
@@ -35,14 +41,16 @@ enum class Sky {
   Daylight,  ///< brighter at the horizon, bluish towards the zenith
 };
 
-/// Names for files and the command line: matte|wood|low-contrast|speckle,
-/// textured|bricks|tiles|plain, uniform|daylight. Parsers throw ParamError naming `field`.
+/// Names for files and the command line (board_texture_names() and
+/// background_names() list them). Parsers throw ParamError naming `field`.
 L2S_SIM_EXPORT const char* name_of(BoardTexture texture);
 L2S_SIM_EXPORT const char* name_of(Background background);
 L2S_SIM_EXPORT const char* name_of(Sky sky);
 L2S_SIM_EXPORT BoardTexture board_texture_from_name(const std::string& name, const std::string& field);
 L2S_SIM_EXPORT Background background_from_name(const std::string& name, const std::string& field);
 L2S_SIM_EXPORT Sky sky_from_name(const std::string& name, const std::string& field);
+L2S_SIM_EXPORT std::vector<std::string> board_texture_names();
+L2S_SIM_EXPORT std::vector<std::string> background_names();
 
 struct L2S_SIM_EXPORT Appearance {
   BoardTexture board = BoardTexture::Matte;

@@ -92,9 +92,9 @@ void add_camera_options(CLI::App* command, SimulateOptions* options) {
                       "lenses of a real pair with this distortion, raw images (none: rectified)")
       ->check(CLI::IsMember({"none", "plumb_bob", "equidistant"}));
   command->add_option("--board-texture", options->board_texture, "board look")
-      ->check(CLI::IsMember({"matte", "wood", "low-contrast", "speckle"}));
+      ->check(CLI::IsMember(sim::board_texture_names()));
   command->add_option("--background", options->background, "wall look")
-      ->check(CLI::IsMember({"textured", "bricks", "tiles", "plain"}));
+      ->check(CLI::IsMember(sim::background_names()));
   command->add_flag("--shadows", options->shadows, "hard shadows from the sun");
 }
 
