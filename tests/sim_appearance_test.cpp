@@ -3,7 +3,9 @@
 // grain runs along the board, a speckle print gives the face edges in every
 // direction that fade to gray where the dots are finer than a pixel, a noise
 // print is coarser, chipboard shows warm flakes at every angle, a black board
-// is darker than its wall and a white one matches a white wall, a
+// is darker than its wall and a white one matches a white wall, a logo and a
+// sticker sit beside and across one hole's rim, a glossy board mirrors the
+// sun where geometry says, a
 // low-contrast board is close to its background, and the camera response
 // (exposure, vignetting, blur, gamma, colour) does what its fields say.
 
@@ -15,6 +17,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 #include <vector>
 
@@ -359,6 +363,102 @@ TEST(Appearance, LowContrastBoardIsCloseToItsBackground) {
   EXPECT_GT(mean_of(suite, SurfaceId::Board) - mean_of(suite, SurfaceId::Wall), 0.25);
 }
 
+/// Pixels where two renders of the same scene differ by more than `threshold`.
+std::vector<Eigen::Vector2d> changed_pixels(const CleanImage& a, const CleanImage& b, double threshold) {
+  std::vector<Eigen::Vector2d> pixels;
+  for (int v = 0; v < a.height; ++v)
+    for (int u = 0; u < a.width; ++u)
+      if (std::abs(a.at(u, v) - b.at(u, v)) > threshold) pixels.emplace_back(u, v);
+  return pixels;
+}
+
+/// The image of the target's hole centres on a board squarely facing the
+/// camera `distance` ahead (board x along -y_body, board y along +z_body).
+std::array<Eigen::Vector2d, 4> projected_holes(const StereoRig& rig, double distance) {
+  std::array<Eigen::Vector2d, 4> image;
+  const auto holes = Target{}.hole_centers();
+  for (std::size_t k = 0; k < 4; ++k)
+    image[k] = rig.project(0, Eigen::Vector3d(distance, -holes[k].x(), holes[k].y()));
+  return image;
+}
+
+TEST(Appearance, ALogoAndItsLabelLieBesideOneHole) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  Appearance logo;
+  logo.board = BoardTexture::Logo;
+  const auto changed = changed_pixels(render_left(scene, logo), render_left(scene, Appearance{}), 0.1);
+  ASSERT_GT(changed.size(), 200u);
+  const StereoRig rig = small_rig();
+  const auto holes = projected_holes(rig, 2.0);
+  // Every printed pixel within 0.27 m of the same hole's centre (the next
+  // hole is 0.4 m away).
+  const double reach = 0.27 * rig.fx() / 2.0;
+  int beside[4] = {0, 0, 0, 0};
+  for (const auto& pixel : changed)
+    for (std::size_t k = 0; k < 4; ++k) beside[k] += (pixel - holes[k]).norm() < reach;
+  EXPECT_EQ(*std::max_element(beside, beside + 4), static_cast<int>(changed.size()));
+}
+
+TEST(Appearance, AStickerCrossesOneRim) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  Appearance sticker;
+  sticker.board = BoardTexture::Sticker;
+  const CleanImage image = render_left(scene, sticker);
+  const auto changed = changed_pixels(image, render_left(scene, Appearance{}), 0.1);
+  ASSERT_GT(changed.size(), 100u);
+  const StereoRig rig = small_rig();
+  const auto holes = projected_holes(rig, 2.0);
+  const double radius = Target{}.hole_radius * rig.fx() / 2.0;
+  // Sticker pixels right at a rim: a neighbour sees through the hole.
+  int at_rim = 0;
+  for (const auto& pixel : changed) {
+    const int u = static_cast<int>(pixel.x()), v = static_cast<int>(pixel.y());
+    bool near_hole = false;
+    for (const auto& hole : holes) near_hole = near_hole || std::abs((pixel - hole).norm() - radius) < 3.0;
+    if (!near_hole || u < 1 || v < 1 || u + 1 >= image.width || v + 1 >= image.height) continue;
+    bool through = false;
+    for (const auto& [du, dv] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}})
+      through = through || image.surface_at(u + du, v + dv) != SurfaceId::Board;
+    at_rim += through;
+  }
+  EXPECT_GT(at_rim, 5) << "the sticker's edge must meet the rim";
+}
+
+TEST(Appearance, AGlossyBoardShowsTheSunWhereItsMirrorDirectionPointsAtIt) {
+  const Scene scene = make_scene(Target{}, BoardPose{2.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  const StereoRig rig = small_rig();
+  const Eigen::Vector3d normal(-1.0, 0.0, 0.0);
+  // Two points of the face (clear of the holes), in the camera body frame.
+  for (const Eigen::Vector3d& point : {Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d(2.0, 0.35, 0.1)}) {
+    Appearance glossy;
+    glossy.board = BoardTexture::Glossy;
+    const Eigen::Vector3d view = point.normalized();
+    glossy.to_light = (view - 2.0 * view.dot(normal) * normal).normalized();
+    const CleanImage image = render_left(scene, glossy);
+    Eigen::Vector2d brightest(-1.0, -1.0);
+    float peak = 0.0f;
+    int saturated = 0;
+    for (int v = 0; v < image.height; ++v)
+      for (int u = 0; u < image.width; ++u) {
+        if (image.surface_at(u, v) != SurfaceId::Board) continue;
+        saturated += image.at(u, v) >= 1.0f;
+        if (image.at(u, v) > peak) peak = image.at(u, v), brightest = Eigen::Vector2d(u, v);
+      }
+    EXPECT_GT(saturated, 100) << "the highlight saturates";
+    // The highlight's top is flat (it falls by 2 % within 1 deg of the mirror
+    // direction) while the laminate's mottling is 1 %: 8 px (2 cm) of play.
+    EXPECT_LT((brightest - rig.project(0, point)).norm(), 8.0);
+  }
+  // A sun whose mirror image falls off the board leaves no highlight on it.
+  Appearance glossy;
+  glossy.board = BoardTexture::Glossy;
+  const CleanImage image = render_left(scene, glossy);
+  int saturated = 0;
+  for (int v = 0; v < image.height; ++v)
+    for (int u = 0; u < image.width; ++u) saturated += image.surface_at(u, v) == SurfaceId::Board && image.at(u, v) >= 1.0f;
+  EXPECT_EQ(saturated, 0);
+}
+
 TEST(Appearance, CameraResponseFollowsItsFields) {
   const Scene scene = make_scene(Target{}, BoardPose{3.0, 0.1, 0.0, 0.2, 0.0, 0.0});
   const CleanImage base = render_left(scene, Appearance{});
@@ -462,7 +562,7 @@ TEST(Appearance, ValidationNamesTheBadField) {
   EXPECT_EQ(board_texture_from_name("speckle", "x"), BoardTexture::Speckle);
   for (const std::string& name : board_texture_names()) EXPECT_EQ(name_of(board_texture_from_name(name, "x")), name);
   for (const std::string& name : background_names()) EXPECT_EQ(name_of(background_from_name(name, "x")), name);
-  EXPECT_EQ(board_texture_names().size(), 8u);
+  EXPECT_EQ(board_texture_names().size(), 11u);
   EXPECT_THROW(board_texture_from_name("speckles", "appearance.board_texture"), ParamError);
   EXPECT_THROW(background_from_name("brick", "appearance.background"), ParamError);
   EXPECT_TRUE(Appearance{}.is_default());

@@ -19,7 +19,8 @@ namespace {
 
 constexpr BoardTexture kBoardTextures[] = {BoardTexture::Matte,   BoardTexture::WoodGrain,  BoardTexture::LowContrast,
                                            BoardTexture::Speckle, BoardTexture::NoisePrint, BoardTexture::Chipboard,
-                                           BoardTexture::Black,   BoardTexture::White};
+                                           BoardTexture::Black,   BoardTexture::White,      BoardTexture::Logo,
+                                           BoardTexture::Sticker, BoardTexture::Glossy};
 constexpr Background kBackgrounds[] = {Background::Textured, Background::Bricks, Background::Tiles, Background::Plain,
                                        Background::White};
 
@@ -41,6 +42,9 @@ const char* name_of(BoardTexture texture) {
     case BoardTexture::Chipboard: return "chipboard";
     case BoardTexture::Black: return "black";
     case BoardTexture::White: return "white";
+    case BoardTexture::Logo: return "logo";
+    case BoardTexture::Sticker: return "sticker";
+    case BoardTexture::Glossy: return "glossy";
     case BoardTexture::Matte: break;
   }
   return "matte";

@@ -22,13 +22,6 @@ constexpr std::uint64_t kNoisePrintStream = 0x9015EULL;
 constexpr std::uint64_t kFlakeStream = 0xF1A4EULL;
 constexpr std::uint64_t kPaintStream = 0x9A1E7ULL;
 
-/// Share of a pixel of footprint `footprint` [m] covered by a disc whose edge
-/// is `distance` [m] away (negative inside): a linear ramp across the footprint.
-double disc_coverage(double distance, double footprint) {
-  if (footprint <= 1e-9) return distance < 0.0 ? 1.0 : 0.0;
-  return std::clamp(0.5 - distance / footprint, 0.0, 1.0);
-}
-
 }  // namespace
 
 Albedo speckle_print(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed) {
@@ -46,7 +39,7 @@ Albedo speckle_print(const Eigen::Vector2d& uv, double footprint, std::uint64_t 
   const double room = 0.5 * kCell - radius;
   const Eigen::Vector2d centre((i + 0.5) * kCell + room * (2.0 * uniform01(mix64(h ^ 1ULL)) - 1.0),
                                (j + 0.5) * kCell + room * (2.0 * uniform01(mix64(h ^ 2ULL)) - 1.0));
-  const double exact = disc_coverage((uv - centre).norm() - radius, footprint);
+  const double exact = edge_coverage((uv - centre).norm() - radius, footprint);
   // Dots finer than the pixel fade to the print's mean gray instead of aliasing.
   const double cover = mean_cover + kept_amplitude(footprint, kCell) * (exact - mean_cover);
   return Albedo{kPaper + cover * (kInk - kPaper), Eigen::Array3d::Ones()};
@@ -87,7 +80,7 @@ Albedo chipboard(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed
       const double across = std::abs(-std::sin(angle) * d.x() + std::cos(angle) * d.y());
       // Signed distance to the flake's outline (a rectangle; exact outside its corners).
       const double distance = std::max(along - half_length, across - half_width);
-      const double share = disc_coverage(distance, footprint);
+      const double share = edge_coverage(distance, footprint);
       if (share > 0.0) covers[count++] = Cover{h, share, 0.45 + 0.30 * uniform01(mix64(h ^ 6ULL))};
     }
   // Flakes lie on one another in the order of their hash: paint them bottom up.
@@ -111,6 +104,11 @@ Albedo black_paint(const Eigen::Vector2d& uv, double footprint, std::uint64_t se
 
 Albedo white_paint(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed) {
   return Albedo{0.86 + 0.008 * filtered_noise(uv.x(), uv.y(), 0.05, 3, seed ^ kPaintStream, footprint),
+                Eigen::Array3d::Ones()};
+}
+
+Albedo laminate(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed) {
+  return Albedo{0.80 + 0.01 * filtered_noise(uv.x(), uv.y(), 0.08, 3, seed ^ kPaintStream, footprint),
                 Eigen::Array3d::Ones()};
 }
 

@@ -29,6 +29,10 @@ Albedo chipboard(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed
 Albedo black_paint(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
 Albedo white_paint(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
 
+/// White laminate (0.80), its diffuse part; its gloss is a highlight the
+/// shader adds (Shader, BoardTexture::Glossy).
+Albedo laminate(const Eigen::Vector2d& uv, double footprint, std::uint64_t seed);
+
 /// The board's edges, back and hole walls behind a printed front: plain
 /// white foam board.
 Albedo unprinted_board();

@@ -17,6 +17,15 @@ inline double kept_amplitude(double footprint, double wavelength) {
   return std::exp(-2.0 * 9.869604401089358 * ratio * ratio);
 }
 
+/// Share of a pixel of footprint `footprint` [m] covered by a shape whose
+/// outline is `distance` [m] away (negative inside): a linear ramp across the
+/// footprint, so printed edges shade like a pixel integrates them.
+inline double edge_coverage(double distance, double footprint) {
+  if (footprint <= 1e-9) return distance < 0.0 ? 1.0 : 0.0;
+  const double share = 0.5 - distance / footprint;
+  return share < 0.0 ? 0.0 : (share > 1.0 ? 1.0 : share);
+}
+
 /// fractal_noise with each octave attenuated by the footprint (not renormalised,
 /// so unresolvable detail fades to the mean instead of aliasing).
 inline double filtered_noise(double x, double y, double wavelength, int octaves, std::uint64_t seed,

@@ -151,6 +151,9 @@ Albedo Materials::board(const Hit& hit, double footprint) const {
     case BoardTexture::Chipboard: return chipboard(hit.uv, footprint, seed_);
     case BoardTexture::Black: return black_paint(hit.uv, footprint, seed_);
     case BoardTexture::White: return white_paint(hit.uv, footprint, seed_);
+    case BoardTexture::Logo:
+    case BoardTexture::Sticker: return suite_look(hit, seed_);  // decals: BoardDecals
+    case BoardTexture::Glossy: return laminate(hit.uv, footprint, seed_);
   }
   return suite_look(hit, seed_);
 }

@@ -1,11 +1,13 @@
 #pragma once
 // The light a camera ray brings back: the first surface along it, lit by the
 // appearance's sun (Lambert) and ambient light, with a shadow ray towards the
-// sun when hard shadows are on; or the sky when it hits nothing.
+// sun when hard shadows are on, and the sun's highlight on a glossy board; or
+// the sky when it hits nothing.
 
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/ray_caster.hpp>
 
+#include "sim/board_decals.hpp"
 #include "sim/marker_texture.hpp"
 #include "sim/materials.hpp"
 
@@ -37,6 +39,7 @@ class Shader {
   const RayCaster& caster_;
   Appearance look_;
   Materials materials_;
+  BoardDecals decals_;
   MarkerTexture markers_;
   int channels_;
   double pixel_angle_;

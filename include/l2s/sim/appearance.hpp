@@ -24,6 +24,9 @@ enum class BoardTexture {
   Chipboard,    ///< oriented strand board: overlapping wood flakes of a few cm at random angles
   Black,        ///< painted matte black: the board darker than most walls (inverted contrast)
   White,        ///< painted matte white, almost textureless (before a white wall: hardly any contrast)
+  Logo,         ///< matte, with a printed logo and a text label beside one hole
+  Sticker,      ///< matte, with a barcode sticker whose edge crosses one hole's rim
+  Glossy,       ///< white laminate: the sun's mirror image is a highlight that can saturate, and cross a hole
 };
 
 /// The wall behind the board (the geometry puts it 0.5..6 m behind).
