@@ -1,6 +1,7 @@
 // The random camera side of a scene: reproducible, within the ranges of
 // issue 8, raw with distortion in about half the draws, every look drawn,
-// and every draw a valid rig and appearance that renders.
+// printed faces from a stream of their own, and every draw a valid rig and
+// appearance that renders.
 
 #include <l2s/sim/camera_scene_draw.hpp>
 #include <l2s/sim/stereo_renderer.hpp>
@@ -69,6 +70,41 @@ TEST(CameraSceneDraw, DrawsWithinTheIssueRangesAndCoverEveryLook) {
   EXPECT_GT(open, kDraws / 20);
   EXPECT_EQ(boards.size(), 3u);
   EXPECT_EQ(backgrounds.size(), 4u);
+}
+
+TEST(CameraSceneDraw, PrintedFacesComeFromTheirOwnStreamInAboutHalfTheScenes) {
+  std::mt19937_64 rng(7), same(7);
+  constexpr int kDraws = 800;
+  int printed = 0, black_on_dark = 0, white = 0, white_on_white = 0;
+  std::map<BoardTexture, int> boards;
+  for (int i = 0; i < kDraws; ++i) {
+    const CameraSceneDraw classic = draw_camera_scene(same);
+    CameraSceneDraw d = draw_camera_scene(rng);
+    std::mt19937_64 faces(1000 + i);
+    draw_board_face(faces, &d.appearance);
+    // Only the face (and the wall behind a black or white one) changes.
+    EXPECT_EQ(d.rig.width, classic.rig.width);
+    EXPECT_EQ(d.appearance.to_light, classic.appearance.to_light);
+    EXPECT_EQ(d.appearance.colour, classic.appearance.colour);
+    ASSERT_NO_THROW(d.appearance.validate());
+    const BoardTexture face = d.appearance.board;
+    const bool is_classic =
+        face == BoardTexture::Matte || face == BoardTexture::WoodGrain || face == BoardTexture::LowContrast;
+    if (is_classic) {
+      EXPECT_EQ(face, classic.appearance.board);
+      EXPECT_EQ(d.appearance.background, classic.appearance.background);
+    }
+    printed += !is_classic;
+    ++boards[face];
+    black_on_dark += face == BoardTexture::Black && d.appearance.background == Background::Textured;
+    white += face == BoardTexture::White;
+    white_on_white += face == BoardTexture::White && d.appearance.background == Background::White;
+  }
+  EXPECT_NEAR(printed, kDraws / 2, kDraws / 16);
+  EXPECT_EQ(boards.size(), 11u) << "every face drawn";
+  for (const auto& [face, count] : boards) EXPECT_GT(count, kDraws / 40) << name_of(face);
+  EXPECT_EQ(black_on_dark, 0);
+  EXPECT_NEAR(white_on_white, white / 2, white / 4 + 1);
 }
 
 TEST(CameraSceneDraw, ADrawRendersAndItsCamerasRectify) {

@@ -139,6 +139,21 @@ Appearance draw_look(std::mt19937_64& rng) {
 
 }  // namespace
 
+void draw_board_face(std::mt19937_64& faces, Appearance* look) {
+  if (!chance(faces, 0.5)) return;
+  constexpr std::array<BoardTexture, 8> kFaces{BoardTexture::Speckle, BoardTexture::NoisePrint,
+                                               BoardTexture::Chipboard, BoardTexture::Black,
+                                               BoardTexture::White, BoardTexture::Logo,
+                                               BoardTexture::Sticker, BoardTexture::Glossy};
+  look->board = kFaces[pick(faces, std::array<double, 8>{1, 1, 1, 1, 1, 1, 1, 1})];
+  // A black board is drawn where users meet it: before a bright wall, the
+  // board's edges darker than their surround.
+  if (look->board == BoardTexture::Black && look->background == Background::Textured)
+    look->background = chance(faces, 0.5) ? Background::Plain : Background::White;
+  // A white board is often hung before a white wall.
+  if (look->board == BoardTexture::White && chance(faces, 0.5)) look->background = Background::White;
+}
+
 CameraSceneDraw draw_camera_scene(std::mt19937_64& rng) {
   CameraSceneDraw draw;
   draw.rig = draw_rig(rng);

@@ -18,6 +18,7 @@ namespace {
 constexpr int kMaxDraws = 50;
 constexpr double kOpenSpaceWall = 60.0;  // [m] behind the board: beyond any sensor's working range here
 constexpr std::uint64_t kSceneStream = 0x5CE9EULL;
+constexpr std::uint64_t kFaceStream = 0xFACE5ULL;
 constexpr double kNearest = 1.5;             // [m] the lidar draw's nearest board
 constexpr double kMinHolePixels = 10.0;      // [px] hole radius in the image at the farthest board
 constexpr double kMinBoardDisparity = 10.0;  // [px] disparity at the farthest board
@@ -56,13 +57,17 @@ SimulationConfig compose(const CameraSceneDraw& camera, const LidarSceneDraw& li
 
 }  // namespace
 
-RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, int threads) {
+RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, int threads, FaceDraw faces) {
   RandomScene scene;
   scene.seed = seed;
   std::string last_failure;
   for (int draw = 0; draw < kMaxDraws; ++draw, ++scene.redraws) {
     std::mt19937_64 rng(detail::hash_counters(seed, kSceneStream, static_cast<std::uint64_t>(draw)));
-    const CameraSceneDraw camera = draw_camera_scene(rng);
+    CameraSceneDraw camera = draw_camera_scene(rng);
+    if (faces == FaceDraw::All) {
+      std::mt19937_64 face_rng(detail::hash_counters(seed, kFaceStream, static_cast<std::uint64_t>(draw)));
+      draw_board_face(face_rng, &camera.appearance);
+    }
     LidarSceneDraw lidar = draw_lidar_scene(rng);
     const double camera_limit = camera_reach(camera.rig, SimulationConfig{}.target.hole_radius);
     if (camera_limit < kNearest) {  // this rig sees no board at a distance the lidar draw allows

@@ -36,4 +36,11 @@ struct L2S_SIM_EXPORT CameraSceneDraw {
 /// Appearance::validate.
 L2S_SIM_EXPORT CameraSceneDraw draw_camera_scene(std::mt19937_64& rng);
 
+/// Draws the board's face over `look` from its own generator (so that the
+/// other draws of a scene stay as they were): in about half the draws one of
+/// the faces users print or paint (speckle, noise print, chipboard, black
+/// before a bright wall, white, often before a white wall, logo and label,
+/// sticker, glossy), otherwise `look`'s face as drawn.
+L2S_SIM_EXPORT void draw_board_face(std::mt19937_64& faces, Appearance* look);
+
 }  // namespace l2s::sim

@@ -7,6 +7,7 @@
 // is drawn again from the next derived seed, so every seed gives a scene.
 
 #include <l2s/export.hpp>
+#include <l2s/sim/appearance.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <cstdint>
@@ -23,7 +24,10 @@ struct RandomScene {
 };
 
 /// The scene of `seed` with `frames` frames at noise factor `noise_k`.
-/// Deterministic. Throws Error when no draw of 50 could be placed.
-L2S_SIM_EXPORT RandomScene make_random_scene(std::uint64_t seed, int frames = 30, double noise_k = 1.0, int threads = 0);
+/// Deterministic. Throws Error when no draw of 50 could be placed. The face
+/// comes from a stream of its own: a seed's rig, lidar, geometry and light
+/// are the same for both FaceDraw values.
+L2S_SIM_EXPORT RandomScene make_random_scene(std::uint64_t seed, int frames = 30, double noise_k = 1.0, int threads = 0,
+                                             FaceDraw faces = FaceDraw::All);
 
 }  // namespace l2s::sim

@@ -41,6 +41,7 @@ struct SuiteCommandOptions {
   int repeats = 3;
   int scene_count = 20;
   int scene_frames = 20;
+  std::string scene_faces = "all";
   int jobs = 0;
   std::uint64_t seed = 1;
   bool quick = false;
@@ -60,16 +61,26 @@ extern "C" void on_interrupt(int) {
 // Scenes in --quick: a few, enough to see that other rigs and lidars still work.
 constexpr int kQuickScenes = 3;
 
-sim::SuiteOptions suite_options(const SuiteCommandOptions& o, bool repeats_given, bool count_given) {
+// Options given on the command line (their defaults differ under --quick).
+struct GivenOptions {
+  bool repeats = false;
+  bool count = false;
+  bool scene_faces = false;
+};
+
+sim::SuiteOptions suite_options(const SuiteCommandOptions& o, const GivenOptions& given) {
   sim::SuiteOptions options;
   if (o.quick)
     options.experiments = {"quick", "scenes"};
   else if (o.experiment != "all")
     options.experiments = {o.experiment};
-  options.scene_count = o.quick && !count_given ? kQuickScenes : o.scene_count;
+  options.scene_count = o.quick && !given.count ? kQuickScenes : o.scene_count;
   options.scene_frames = o.scene_frames;
+  // --quick keeps the scenes its thresholds were measured on: the classic faces.
+  options.scene_faces = (o.quick && !given.scene_faces) || o.scene_faces == "classic" ? sim::FaceDraw::Classic
+                                                                                 : sim::FaceDraw::All;
   if (o.preset != "both") options.presets = {o.preset};
-  options.repeats = o.quick && !repeats_given ? 1 : o.repeats;
+  options.repeats = o.quick && !given.repeats ? 1 : o.repeats;
   options.seed = o.seed;
   return options;
 }
@@ -225,8 +236,8 @@ int check_thresholds(const std::vector<sim::SuiteGroup>& plan, const std::vector
   return 0;
 }
 
-int run_suite(const SuiteCommandOptions& o, bool repeats_given, bool count_given) {
-  const sim::SuiteOptions options = suite_options(o, repeats_given, count_given);
+int run_suite(const SuiteCommandOptions& o, const GivenOptions& given) {
+  const sim::SuiteOptions options = suite_options(o, given);
   const std::vector<sim::SuiteGroup> plan = sim::make_suite_plan(options);
   fs::create_directories(o.out_dir);
   const std::string csv_path = (fs::path(o.out_dir) / "results.csv").string();
@@ -282,6 +293,11 @@ void add_suite_command(CLI::App& app, Runner& runner) {
   command->add_option("--scene-frames", options->scene_frames, "frames per random scene")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
+  command->add_option("--scene-faces", options->scene_faces,
+                      "board faces of random scenes: all (printed, painted, decorated and glossy ones in about "
+                      "half the scenes) or classic (matte, wood, low-contrast; --quick's default)")
+      ->check(CLI::IsMember({"all", "classic"}))
+      ->capture_default_str();
   command->add_option("--repeats", options->repeats, "repetitions per cell, independent seeds")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
@@ -299,9 +315,11 @@ void add_suite_command(CLI::App& app, Runner& runner) {
       ->check(CLI::ExistingFile);
   command->add_flag("--no-plots", options->no_plots, "do not run scripts/plot_suite.py");
   command->callback([&runner, options, command] {
-    const bool repeats_given = command->count("--repeats") > 0;
-    const bool count_given = command->count("--count") > 0;
-    runner = [options, repeats_given, count_given] { return run_suite(*options, repeats_given, count_given); };
+    GivenOptions given;
+    given.repeats = command->count("--repeats") > 0;
+    given.count = command->count("--count") > 0;
+    given.scene_faces = command->count("--scene-faces") > 0;
+    runner = [options, given] { return run_suite(*options, given); };
   });
 }
 
