@@ -1,9 +1,10 @@
 // The random camera side of a scene: reproducible, within the ranges of
 // issue 8, raw with distortion in about half the draws, every look drawn,
-// printed faces from a stream of their own, and every draw a valid rig and
-// appearance that renders.
+// printed faces and markers from streams of their own that leave the rest
+// of a scene as it was, and every draw a valid rig and appearance that renders.
 
 #include <l2s/sim/camera_scene_draw.hpp>
+#include <l2s/sim/random_scene.hpp>
 #include <l2s/sim/stereo_renderer.hpp>
 
 #include <gtest/gtest.h>
@@ -11,6 +12,8 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
+#include <string>
 
 namespace l2s::sim {
 namespace {
@@ -105,6 +108,46 @@ TEST(CameraSceneDraw, PrintedFacesComeFromTheirOwnStreamInAboutHalfTheScenes) {
   for (const auto& [face, count] : boards) EXPECT_GT(count, kDraws / 40) << name_of(face);
   EXPECT_EQ(black_on_dark, 0);
   EXPECT_NEAR(white_on_white, white / 2, white / 4 + 1);
+}
+
+TEST(CameraSceneDraw, MarkersOnAThirdOfTheBoardsOfManyDictionaries) {
+  std::mt19937_64 rng(11);
+  constexpr int kDraws = 600;
+  int marked = 0;
+  std::set<std::string> dictionaries;
+  for (int i = 0; i < kDraws; ++i) {
+    Target target;
+    draw_board_markers(rng, &target);
+    if (!target.markers) continue;
+    ++marked;
+    ASSERT_NO_THROW(target.validate()) << target.markers->dictionary;
+    dictionaries.insert(target.markers->dictionary);
+    const auto& ids = target.markers->ids;
+    EXPECT_EQ(std::set<int>(ids.begin(), ids.end()).size(), 4u) << "distinct ids";
+    EXPECT_TRUE(target.markers->size >= 0.15 && target.markers->size <= 0.20);
+  }
+  EXPECT_NEAR(marked, kDraws / 3, kDraws / 15);
+  EXPECT_EQ(dictionaries.size(), 8u);
+}
+
+TEST(RandomScene, PrintedFacesAndMarkersLeaveTheRestOfTheSceneAsItWas) {
+  int faces = 0, markers = 0;
+  for (const std::uint64_t seed : {1, 3}) {  // seed 1 draws markers, 3 a printed face
+    const RandomScene all = make_random_scene(seed, 1, 1.0, 1, FaceDraw::All);
+    const RandomScene classic = make_random_scene(seed, 1, 1.0, 1, FaceDraw::Classic);
+    SCOPED_TRACE(all.summary);
+    const SimulationConfig& a = all.simulator->config();
+    const SimulationConfig& c = classic.simulator->config();
+    EXPECT_FALSE(c.target.markers.has_value());
+    EXPECT_EQ(a.rig.width, c.rig.width);
+    EXPECT_EQ(a.appearance.to_light, c.appearance.to_light);
+    EXPECT_EQ(a.lidar, c.lidar);
+    EXPECT_EQ(all.simulator->board_pose().x, classic.simulator->board_pose().x);
+    faces += a.appearance.board != c.appearance.board;
+    markers += a.target.markers.has_value();
+  }
+  EXPECT_GT(faces, 0);
+  EXPECT_GT(markers, 0);
 }
 
 TEST(CameraSceneDraw, ADrawRendersAndItsCamerasRectify) {

@@ -9,6 +9,7 @@
 
 #include <l2s/error.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -152,6 +153,23 @@ void draw_board_face(std::mt19937_64& faces, Appearance* look) {
     look->background = chance(faces, 0.5) ? Background::Plain : Background::White;
   // A white board is often hung before a white wall.
   if (look->board == BoardTexture::White && chance(faces, 0.5)) look->background = Background::White;
+}
+
+void draw_board_markers(std::mt19937_64& markers, Target* target) {
+  if (!chance(markers, 1.0 / 3.0)) return;
+  constexpr std::array<const char*, 8> kDictionaries{"DICT_4X4_50",  "DICT_4X4_100",  "DICT_5X5_100",
+                                                     "DICT_5X5_250", "DICT_6X6_250",  "DICT_6X6_1000",
+                                                     "DICT_7X7_100", "DICT_ARUCO_ORIGINAL"};
+  MarkerLayout layout = MarkerLayout::corners_default();
+  layout.dictionary = kDictionaries[pick(markers, std::array<double, 8>{1, 1, 1, 1, 1, 1, 1, 1})];
+  layout.size = uniform(markers, 0.15, 0.20);
+  const int count = MarkerLayout::dictionary_size(layout.dictionary);
+  layout.ids.clear();
+  while (layout.ids.size() < layout.centres.size()) {
+    const int id = static_cast<int>(uniform(markers, 0.0, count - 1e-9));
+    if (std::find(layout.ids.begin(), layout.ids.end(), id) == layout.ids.end()) layout.ids.push_back(id);
+  }
+  target->markers = layout;
 }
 
 CameraSceneDraw draw_camera_scene(std::mt19937_64& rng) {

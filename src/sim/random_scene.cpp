@@ -19,6 +19,7 @@ constexpr int kMaxDraws = 50;
 constexpr double kOpenSpaceWall = 60.0;  // [m] behind the board: beyond any sensor's working range here
 constexpr std::uint64_t kSceneStream = 0x5CE9EULL;
 constexpr std::uint64_t kFaceStream = 0xFACE5ULL;
+constexpr std::uint64_t kMarkerStream = 0xA1C0ULL;
 constexpr double kNearest = 1.5;             // [m] the lidar draw's nearest board
 constexpr double kMinHolePixels = 10.0;      // [px] hole radius in the image at the farthest board
 constexpr double kMinBoardDisparity = 10.0;  // [px] disparity at the farthest board
@@ -75,14 +76,20 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
       continue;
     }
     lidar.board_distance = shared_distance(lidar, camera_limit);
-    const SimulationConfig config = compose(camera, lidar, seed, frames, noise_k, threads);
+    SimulationConfig config = compose(camera, lidar, seed, frames, noise_k, threads);
+    if (faces == FaceDraw::All) {
+      std::mt19937_64 marker_rng(detail::hash_counters(seed, kMarkerStream, static_cast<std::uint64_t>(draw)));
+      draw_board_markers(marker_rng, &config.target);
+    }
     try {
       scene.simulator = std::make_unique<DatasetSimulator>(config);
     } catch (const Error& error) {  // no board pose satisfies both sensors: draw again
       last_failure = error.what();
       continue;
     }
-    scene.summary = camera.summary() + " | " + lidar.lidar + (lidar.quirks.any() ? " (quirks)" : "") + ", board " +
+    const auto& markers = config.target.markers;
+    scene.summary = camera.summary() + (markers ? ", markers " + markers->dictionary : std::string()) + " | " +
+                    lidar.lidar + (lidar.quirks.any() ? " (quirks)" : "") + ", board " +
                     std::to_string(scene.simulator->board_pose().x).substr(0, 4) + " m";
     return scene;
   }

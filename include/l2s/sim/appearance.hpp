@@ -31,8 +31,8 @@ enum class BoardTexture {
 
 /// Which board faces randomised scenes draw (make_random_scene).
 enum class FaceDraw {
-  All,      ///< every face: a printed, painted, decorated or glossy one in about half the scenes
-  Classic,  ///< matte, wood or low-contrast only: each seed's scene as drawn before the printed faces existed
+  All,      ///< every face: a printed, painted, decorated or glossy one in about half the scenes, markers on a third
+  Classic,  ///< matte, wood or low-contrast, no markers: each seed's scene as drawn before the printed faces existed
 };
 
 /// The wall behind the board (the geometry puts it 0.5..6 m behind).
