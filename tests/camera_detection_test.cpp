@@ -164,7 +164,7 @@ TEST(CameraDetection, AWallSplitByTheBoardDoesNotUseUpThePlaneCandidates) {
 /// preset): the board must be found, every centre within `tolerance` [m].
 void expect_board_found_in_random_scene(std::uint64_t seed, double tolerance) {
   const auto params = Calibrator::Params::preset("default");
-  const sim::RandomScene scene = sim::make_random_scene(seed, 1, 1.0, 1, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(seed, 1, 1.0, 1, sim::BoardDraw::Classic);
   const auto frame = scene.simulator->frame(0);
   const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
                                              scene.simulator->config().target, params);
@@ -204,7 +204,7 @@ TEST(CameraDetection, HolesWhoseRimsShowOnlyInColourAreFoundWithColourEdges) {
 TEST(CameraDetection, AHypothesisWhoseRimRefinementDivergedIsNotKept) {
   const auto params = Calibrator::Params::preset("default");
   for (const auto& [seed, index] : {std::pair<std::uint64_t, int>{11, 0}, {29, 1}}) {
-    const sim::RandomScene scene = sim::make_random_scene(seed, index + 1, 1.0, 1, sim::FaceDraw::Classic);
+    const sim::RandomScene scene = sim::make_random_scene(seed, index + 1, 1.0, 1, sim::BoardDraw::Classic);
     const auto frame = scene.simulator->frame(index);
     const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
                                                scene.simulator->config().target, params);
@@ -221,7 +221,7 @@ TEST(CameraDetection, AHypothesisWhoseRimRefinementDivergedIsNotKept) {
 // converge, and this board's holes show no stereo evidence to stand in for
 // it: the board is rejected at its refinement.
 TEST(CameraDetection, ARejectedHypothesisIsShownWithItsRefinement) {
-  const sim::RandomScene scene = sim::make_random_scene(2010363691, 1, 1.0, 1, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(2010363691, 1, 1.0, 1, sim::BoardDraw::Classic);
   auto params = Calibrator::Params::preset("default");
   params.board_refiner.min_edge_strength = 1000.0;
   params.board_refiner.edge_noise_factor = 1000.0;
@@ -251,7 +251,7 @@ struct LowContrastCase {
 class CameraDetectionLowContrast : public ::testing::TestWithParam<LowContrastCase> {};
 
 TEST_P(CameraDetectionLowContrast, FindsTheBoardByItsFaintRims) {
-  const sim::RandomScene scene = sim::make_random_scene(GetParam().seed, 1, 1.0, 1, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(GetParam().seed, 1, 1.0, 1, sim::BoardDraw::Classic);
   const auto params = Calibrator::Params::preset("default");
   const auto frame = scene.simulator->frame(0);
   const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
@@ -292,7 +292,7 @@ TEST(CameraDetection, RimsFainterThanTheNoisePerSampleAreConfirmedAlongArcs) {
 // make circle candidates stronger than the rims; no four candidates formed
 // the pattern in any frame. The pattern's own votes find it.
 TEST(CameraDetection, ASmallLowResolutionBoardBeforeBricksIsFoundByItsPattern) {
-  const sim::RandomScene scene = sim::make_random_scene(1468088629, 2, 1.0, 1, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(1468088629, 2, 1.0, 1, sim::BoardDraw::Classic);
   const auto params = Calibrator::Params::preset("default");
   const auto frame = scene.simulator->frame(1);  // frame 0's rims are confirmed at 28 %, below the verifier's 30 %
   const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
@@ -315,7 +315,7 @@ TEST(CameraDetection, ASmallLowResolutionBoardBeforeBricksIsFoundByItsPattern) {
 TEST(CameraDetection, RimsBeforeWallJointsAreRefinedOnTheRimsNotTheJoints) {
   const auto params = Calibrator::Params::preset("default");
   for (const auto& [seed, index] : {std::pair<std::uint64_t, int>{1653306487, 0}, {1653306487, 1}, {1060328696, 1}}) {
-    const sim::RandomScene scene = sim::make_random_scene(seed, index + 1, 1.0, 1, sim::FaceDraw::Classic);
+    const sim::RandomScene scene = sim::make_random_scene(seed, index + 1, 1.0, 1, sim::BoardDraw::Classic);
     const auto frame = scene.simulator->frame(index);
     const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),
                                                scene.simulator->config().target, params);
@@ -345,7 +345,7 @@ class CameraDetectionWallPatches : public ::testing::TestWithParam<WallPatchCase
 
 TEST_P(CameraDetectionWallPatches, NeverKeepsAPatchOfWallAsTheBoard) {
   const sim::RandomScene scene = sim::make_random_scene(GetParam().seed, std::max(3, GetParam().frame + 1), 1.0, 1,
-                                                        sim::FaceDraw::Classic);
+                                                        sim::BoardDraw::Classic);
   const auto params = Calibrator::Params::preset("default");
   const auto frame = scene.simulator->frame(GetParam().frame);
   const CameraInspection in = inspect_camera(frame.left, frame.right, scene.simulator->cameras(),

@@ -35,7 +35,7 @@ class CheckOnRandomScenes : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(CheckOnRandomScenes, AGoodCalibrationIsOk) {
   const SceneCase& c = GetParam();
-  const sim::RandomScene scene = sim::make_random_scene(c.seed, c.frames, 1.0, 0, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(c.seed, c.frames, 1.0, 0, sim::BoardDraw::Classic);
   const sim::DatasetSimulator& simulator = *scene.simulator;
   auto params = Calibrator::Params::preset("default");
   params.ring_free_frames = c.frames;  // one window of the whole recording
@@ -76,7 +76,7 @@ class LabelsOnRandomScenes : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(LabelsOnRandomScenes, TheRightLabelsStandOnTheWholeRecordingsEvidence) {
   const SceneCase& c = GetParam();
-  const sim::RandomScene scene = sim::make_random_scene(c.seed, c.frames, 1.0, 0, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(c.seed, c.frames, 1.0, 0, sim::BoardDraw::Classic);
   const sim::DatasetSimulator& simulator = *scene.simulator;
   Calibrator calibrator(simulator.cameras(), simulator.config().target);
   for (int i = 0; i < c.frames; ++i) {

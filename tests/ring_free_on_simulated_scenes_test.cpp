@@ -64,7 +64,7 @@ TEST(RingFreeOnSimulatedScenes, ABoardBeforeOpenSpaceShowsItsHolesByTheReturnsTh
   // given ~500 returns there.
   const auto params = Calibrator::Params::preset("default");
   const sim::RandomScene scene = sim::make_random_scene(1188718255, params.ring_free_frames, 1.0, 0,
-                                                        sim::FaceDraw::Classic);
+                                                        sim::BoardDraw::Classic);
   const sim::DatasetSimulator& simulator = *scene.simulator;
   ASSERT_EQ(simulator.config().lidar, "avia");
   std::vector<LidarCloud> sweeps;
@@ -82,7 +82,7 @@ TEST(RingFreeOnSimulatedScenes, ASparseScanKeepsAWindowWithoutTheBoardUntilItSho
   // A window without the board grows instead of starting afresh.
   const auto params = Calibrator::Params::preset("default");
   const int sweeps = params.ring_free_frames + params.ring_free_frames / 2;
-  const sim::RandomScene scene = sim::make_random_scene(1169212705, sweeps, 1.0, 0, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(1169212705, sweeps, 1.0, 0, sim::BoardDraw::Classic);
   const sim::DatasetSimulator& simulator = *scene.simulator;
   ASSERT_EQ(simulator.config().lidar, "mid360");
   Calibrator calibrator(simulator.cameras(), simulator.config().target, params);

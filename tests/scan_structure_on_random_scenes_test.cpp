@@ -16,7 +16,7 @@ namespace {
 bool rosette(const std::string& lidar) { return lidar == "avia" || lidar == "mid360"; }
 
 void expect_path(std::uint64_t seed) {
-  const sim::RandomScene scene = sim::make_random_scene(seed, 2, 1.0, 1, sim::FaceDraw::Classic);
+  const sim::RandomScene scene = sim::make_random_scene(seed, 2, 1.0, 1, sim::BoardDraw::Classic);
   const std::string& lidar = scene.simulator->config().lidar;
   for (int i = 0; i < 2; ++i) {
     const io::ScanClassification scan = io::classify_scan(scene.simulator->frame(i).lidar);

@@ -228,12 +228,12 @@ TEST(SuitePlan, ScenesAreCountedNotRepeatedAndDrawTheirLidar) {
     EXPECT_EQ(plan[i].frames, 7);
     ASSERT_EQ(plan[i].cells.size(), 2u);  // both presets
     EXPECT_EQ(plan[i].cells[0].lidar, "random");
-    EXPECT_EQ(plan[i].faces, FaceDraw::All);
+    EXPECT_EQ(plan[i].boards, BoardDraw::All);
     seeds.insert(plan[i].seed);
   }
   EXPECT_EQ(seeds.size(), 5u);
-  options.scene_faces = FaceDraw::Classic;
-  for (const auto& group : make_suite_plan(options)) EXPECT_EQ(group.faces, FaceDraw::Classic);
+  options.scene_boards = BoardDraw::Classic;
+  for (const auto& group : make_suite_plan(options)) EXPECT_EQ(group.boards, BoardDraw::Classic);
   options.scene_count = 0;
   EXPECT_THROW(make_suite_plan(options), ParamError);
 }

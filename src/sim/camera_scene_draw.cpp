@@ -9,7 +9,8 @@
 
 #include <l2s/error.hpp>
 
-#include <algorithm>
+#include "sim/draw_random.hpp"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -19,28 +20,11 @@
 namespace l2s::sim {
 namespace {
 
+using detail::chance;
+using detail::pick;
+using detail::uniform;
+
 constexpr double kDeg = 3.141592653589793 / 180.0;
-
-/// Uniform in [lo, hi) from the generator's raw bits (std distributions
-/// differ between standard libraries; the engine's output does not).
-double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * (1.0 / 9007199254740992.0));
-}
-
-bool chance(std::mt19937_64& rng, double p) { return uniform(rng, 0.0, 1.0) < p; }
-
-/// Index drawn with the given weights.
-template <std::size_t N>
-std::size_t pick(std::mt19937_64& rng, const std::array<double, N>& weights) {
-  double total = 0.0;
-  for (double w : weights) total += w;
-  double x = uniform(rng, 0.0, total);
-  for (std::size_t i = 0; i + 1 < N; ++i) {
-    if (x < weights[i]) return i;
-    x -= weights[i];
-  }
-  return N - 1;
-}
 
 constexpr std::array<std::pair<int, int>, 11> kSensors{{{640, 480},   {752, 480},   {800, 600},
                                                         {1024, 768},  {1280, 720},  {1280, 960},
@@ -139,38 +123,6 @@ Appearance draw_look(std::mt19937_64& rng) {
 }
 
 }  // namespace
-
-void draw_board_face(std::mt19937_64& faces, Appearance* look) {
-  if (!chance(faces, 0.5)) return;
-  constexpr std::array<BoardTexture, 8> kFaces{BoardTexture::Speckle, BoardTexture::NoisePrint,
-                                               BoardTexture::Chipboard, BoardTexture::Black,
-                                               BoardTexture::White, BoardTexture::Logo,
-                                               BoardTexture::Sticker, BoardTexture::Glossy};
-  look->board = kFaces[pick(faces, std::array<double, 8>{1, 1, 1, 1, 1, 1, 1, 1})];
-  // A black board is drawn where users meet it: before a bright wall, the
-  // board's edges darker than their surround.
-  if (look->board == BoardTexture::Black && look->background == Background::Textured)
-    look->background = chance(faces, 0.5) ? Background::Plain : Background::White;
-  // A white board is often hung before a white wall.
-  if (look->board == BoardTexture::White && chance(faces, 0.5)) look->background = Background::White;
-}
-
-void draw_board_markers(std::mt19937_64& markers, Target* target) {
-  if (!chance(markers, 1.0 / 3.0)) return;
-  constexpr std::array<const char*, 8> kDictionaries{"DICT_4X4_50",  "DICT_4X4_100",  "DICT_5X5_100",
-                                                     "DICT_5X5_250", "DICT_6X6_250",  "DICT_6X6_1000",
-                                                     "DICT_7X7_100", "DICT_ARUCO_ORIGINAL"};
-  MarkerLayout layout = MarkerLayout::corners_default();
-  layout.dictionary = kDictionaries[pick(markers, std::array<double, 8>{1, 1, 1, 1, 1, 1, 1, 1})];
-  layout.size = uniform(markers, 0.15, 0.20);
-  const int count = MarkerLayout::dictionary_size(layout.dictionary);
-  layout.ids.clear();
-  while (layout.ids.size() < layout.centres.size()) {
-    const int id = static_cast<int>(uniform(markers, 0.0, count - 1e-9));
-    if (std::find(layout.ids.begin(), layout.ids.end(), id) == layout.ids.end()) layout.ids.push_back(id);
-  }
-  target->markers = layout;
-}
 
 CameraSceneDraw draw_camera_scene(std::mt19937_64& rng) {
   CameraSceneDraw draw;

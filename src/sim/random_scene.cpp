@@ -5,10 +5,12 @@
 #include <l2s/sim/random_scene.hpp>
 
 #include <l2s/error.hpp>
+#include <l2s/sim/board_draw.hpp>
 #include <l2s/sim/camera_scene_draw.hpp>
 #include <l2s/sim/lidar_scene_draw.hpp>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "sim/random.hpp"
 
@@ -20,6 +22,7 @@ constexpr double kOpenSpaceWall = 60.0;  // [m] behind the board: beyond any sen
 constexpr std::uint64_t kSceneStream = 0x5CE9EULL;
 constexpr std::uint64_t kFaceStream = 0xFACE5ULL;
 constexpr std::uint64_t kMarkerStream = 0xA1C0ULL;
+constexpr std::uint64_t kBoardStream = 0xB0A4DULL;
 constexpr double kNearest = 1.5;             // [m] the lidar draw's nearest board
 constexpr double kMinHolePixels = 10.0;      // [px] hole radius in the image at the farthest board
 constexpr double kMinBoardDisparity = 10.0;  // [px] disparity at the farthest board
@@ -56,39 +59,59 @@ SimulationConfig compose(const CameraSceneDraw& camera, const LidarSceneDraw& li
   return config;
 }
 
+/// ", board 1.20x0.90 r0.10 on 0.60x0.45" when not the default board, and
+/// ", markers DICT_..." when it carries markers.
+std::string board_summary(const Target& board) {
+  std::string text;
+  const Target standard;
+  if (board.board_width != standard.board_width || board.board_height != standard.board_height ||
+      board.hole_radius != standard.hole_radius || board.hole_spacing_x != standard.hole_spacing_x ||
+      board.hole_spacing_y != standard.hole_spacing_y) {
+    char line[96];
+    std::snprintf(line, sizeof line, ", board %.2fx%.2f r%.2f on %.2fx%.2f", board.board_width, board.board_height,
+                  board.hole_radius, board.hole_spacing_x, board.hole_spacing_y);
+    text += line;
+  }
+  if (board.markers) text += ", markers " + board.markers->dictionary;
+  return text;
+}
+
 }  // namespace
 
-RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, int threads, FaceDraw faces) {
+RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, int threads, BoardDraw boards) {
   RandomScene scene;
   scene.seed = seed;
   std::string last_failure;
   for (int draw = 0; draw < kMaxDraws; ++draw, ++scene.redraws) {
     std::mt19937_64 rng(detail::hash_counters(seed, kSceneStream, static_cast<std::uint64_t>(draw)));
     CameraSceneDraw camera = draw_camera_scene(rng);
-    if (faces == FaceDraw::All) {
+    if (boards == BoardDraw::All) {
       std::mt19937_64 face_rng(detail::hash_counters(seed, kFaceStream, static_cast<std::uint64_t>(draw)));
       draw_board_face(face_rng, &camera.appearance);
     }
     LidarSceneDraw lidar = draw_lidar_scene(rng);
-    const double camera_limit = camera_reach(camera.rig, SimulationConfig{}.target.hole_radius);
+    Target board;
+    if (boards == BoardDraw::All) {
+      std::mt19937_64 board_rng(detail::hash_counters(seed, kBoardStream, static_cast<std::uint64_t>(draw)));
+      draw_board_geometry(board_rng, &board);
+      std::mt19937_64 marker_rng(detail::hash_counters(seed, kMarkerStream, static_cast<std::uint64_t>(draw)));
+      draw_board_markers(marker_rng, &board);
+    }
+    const double camera_limit = camera_reach(camera.rig, board.hole_radius);
     if (camera_limit < kNearest) {  // this rig sees no board at a distance the lidar draw allows
       last_failure = "the rig resolves the holes only up to " + std::to_string(camera_limit) + " m";
       continue;
     }
     lidar.board_distance = shared_distance(lidar, camera_limit);
     SimulationConfig config = compose(camera, lidar, seed, frames, noise_k, threads);
-    if (faces == FaceDraw::All) {
-      std::mt19937_64 marker_rng(detail::hash_counters(seed, kMarkerStream, static_cast<std::uint64_t>(draw)));
-      draw_board_markers(marker_rng, &config.target);
-    }
+    config.target = board;
     try {
       scene.simulator = std::make_unique<DatasetSimulator>(config);
     } catch (const Error& error) {  // no board pose satisfies both sensors: draw again
       last_failure = error.what();
       continue;
     }
-    const auto& markers = config.target.markers;
-    scene.summary = camera.summary() + (markers ? ", markers " + markers->dictionary : std::string()) + " | " +
+    scene.summary = camera.summary() + board_summary(board) + " | " +
                     lidar.lidar + (lidar.quirks.any() ? " (quirks)" : "") + ", board " +
                     std::to_string(scene.simulator->board_pose().x).substr(0, 4) + " m";
     return scene;

@@ -128,7 +128,7 @@ std::vector<SuiteGroup> make_suite_plan(const SuiteOptions& options) {
           group.frames = spec.frames;
           group.repetition = repetition;
           group.seed = suite_seed(options.seed, experiment, setting, k, repetition);
-          group.faces = options.scene_faces;
+          group.boards = options.scene_boards;
           for (const auto& lidar : spec.lidars)
             for (const auto& preset : options.presets)
               group.cells.push_back({experiment, setting, lidar, k, spec.frames, preset, repetition,

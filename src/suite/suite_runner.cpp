@@ -122,7 +122,7 @@ GroupData simulate_group(const SuiteGroup& group, const std::vector<SuiteCell>& 
     if (data.simulators.count(cell.lidar) || data.failures.count(cell.lidar)) continue;
     if (group.experiment == "scenes") {
       try {
-        RandomScene drawn = make_random_scene(group.seed, group.frames, group.noise_k, threads, group.faces);
+        RandomScene drawn = make_random_scene(group.seed, group.frames, group.noise_k, threads, group.boards);
         data.scene = drawn.summary;
         data.source = drawn.simulator.get();
         data.simulators[cell.lidar] = std::move(drawn.simulator);

@@ -29,12 +29,6 @@ enum class BoardTexture {
   Glossy,       ///< white laminate: the sun's mirror image is a highlight that can saturate, and cross a hole
 };
 
-/// Which board faces randomised scenes draw (make_random_scene).
-enum class FaceDraw {
-  All,      ///< every face: a printed, painted, decorated or glossy one in about half the scenes, markers on a third
-  Classic,  ///< matte, wood or low-contrast, no markers: each seed's scene as drawn before the printed faces existed
-};
-
 /// The wall behind the board (the geometry puts it 0.5..6 m behind).
 enum class Background {
   Textured,  ///< dark multi-scale texture (the paper suite's wall)

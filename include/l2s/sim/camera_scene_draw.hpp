@@ -9,7 +9,6 @@
 #include <l2s/export.hpp>
 #include <l2s/sim/appearance.hpp>
 #include <l2s/sim/stereo_rig.hpp>
-#include <l2s/target.hpp>
 
 #include <random>
 #include <string>
@@ -36,19 +35,5 @@ struct L2S_SIM_EXPORT CameraSceneDraw {
 /// used, no std distributions). Every draw passes StereoRig::validate and
 /// Appearance::validate.
 L2S_SIM_EXPORT CameraSceneDraw draw_camera_scene(std::mt19937_64& rng);
-
-/// Draws the board's face over `look` from its own generator (so that the
-/// other draws of a scene stay as they were): in about half the draws one of
-/// the faces users print or paint (speckle, noise print, chipboard, black
-/// before a bright wall, white, often before a white wall, logo and label,
-/// sticker, glossy), otherwise `look`'s face as drawn.
-L2S_SIM_EXPORT void draw_board_face(std::mt19937_64& faces, Appearance* look);
-
-/// Draws printed ArUco markers for `target` from their own generator: in
-/// about a third of the draws four markers near the board's corners (where
-/// the default layout puts them), 0.15-0.2 m, of one of OpenCV's
-/// dictionaries (4x4 to 7x7 bits, and the original ArUco), with distinct
-/// random ids; otherwise `target` keeps its markers (none by default).
-L2S_SIM_EXPORT void draw_board_markers(std::mt19937_64& markers, Target* target);
 
 }  // namespace l2s::sim

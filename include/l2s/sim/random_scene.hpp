@@ -7,7 +7,7 @@
 // is drawn again from the next derived seed, so every seed gives a scene.
 
 #include <l2s/export.hpp>
-#include <l2s/sim/appearance.hpp>
+#include <l2s/sim/board_draw.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <cstdint>
@@ -24,10 +24,11 @@ struct RandomScene {
 };
 
 /// The scene of `seed` with `frames` frames at noise factor `noise_k`.
-/// Deterministic. Throws Error when no draw of 50 could be placed. The face
-/// comes from a stream of its own: a seed's rig, lidar, geometry and light
-/// are the same for both FaceDraw values.
+/// Deterministic. Throws Error when no draw of 50 could be placed. The board
+/// (board_draw.hpp) comes from streams of its own: a seed's rig, lidar,
+/// surroundings and light are the same for both BoardDraw values (the board's
+/// distance too, unless its holes differ in size).
 L2S_SIM_EXPORT RandomScene make_random_scene(std::uint64_t seed, int frames = 30, double noise_k = 1.0, int threads = 0,
-                                             FaceDraw faces = FaceDraw::All);
+                                             BoardDraw boards = BoardDraw::All);
 
 }  // namespace l2s::sim

@@ -5,7 +5,7 @@
 // memory). `l2s suite` schedules the groups; suite_results.hpp records them.
 
 #include <l2s/export.hpp>
-#include <l2s/sim/appearance.hpp>
+#include <l2s/sim/board_draw.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -28,7 +28,7 @@ struct L2S_SUITE_EXPORT SuiteOptions {
   std::uint64_t seed = 1;  ///< base seed; every cell's seed derives from it
   int scene_count = 20;    ///< scenes of the "scenes" experiment, >= 1
   int scene_frames = 20;   ///< frames per scene (2 s at 10 Hz: a ring-free lidar needs them)
-  FaceDraw scene_faces = FaceDraw::All;  ///< the board faces the "scenes" experiment draws
+  BoardDraw scene_boards = BoardDraw::All;  ///< the boards the "scenes" experiment draws
 
   /// Throws ParamError naming the field.
   void validate() const;
@@ -71,7 +71,7 @@ struct SuiteGroup {
   int frames = 30;
   int repetition = 0;
   std::uint64_t seed = 0;
-  FaceDraw faces = FaceDraw::All;  ///< scenes: the faces the scene draws
+  BoardDraw boards = BoardDraw::All;  ///< scenes: the boards the scene draws
   std::vector<SuiteCell> cells;
 };
 

@@ -41,7 +41,7 @@ struct SuiteCommandOptions {
   int repeats = 3;
   int scene_count = 20;
   int scene_frames = 20;
-  std::string scene_faces = "all";
+  std::string scene_boards = "all";
   int jobs = 0;
   std::uint64_t seed = 1;
   bool quick = false;
@@ -65,7 +65,7 @@ constexpr int kQuickScenes = 3;
 struct GivenOptions {
   bool repeats = false;
   bool count = false;
-  bool scene_faces = false;
+  bool scene_boards = false;
 };
 
 sim::SuiteOptions suite_options(const SuiteCommandOptions& o, const GivenOptions& given) {
@@ -77,8 +77,8 @@ sim::SuiteOptions suite_options(const SuiteCommandOptions& o, const GivenOptions
   options.scene_count = o.quick && !given.count ? kQuickScenes : o.scene_count;
   options.scene_frames = o.scene_frames;
   // --quick keeps the scenes its thresholds were measured on: the classic faces.
-  options.scene_faces = (o.quick && !given.scene_faces) || o.scene_faces == "classic" ? sim::FaceDraw::Classic
-                                                                                 : sim::FaceDraw::All;
+  options.scene_boards = (o.quick && !given.scene_boards) || o.scene_boards == "classic" ? sim::BoardDraw::Classic
+                                                                                 : sim::BoardDraw::All;
   if (o.preset != "both") options.presets = {o.preset};
   options.repeats = o.quick && !given.repeats ? 1 : o.repeats;
   options.seed = o.seed;
@@ -293,9 +293,10 @@ void add_suite_command(CLI::App& app, Runner& runner) {
   command->add_option("--scene-frames", options->scene_frames, "frames per random scene")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  command->add_option("--scene-faces", options->scene_faces,
-                      "board faces of random scenes: all (printed, painted, decorated and glossy ones in about "
-                      "half the scenes) or classic (matte, wood, low-contrast; --quick's default)")
+  command->add_option("--scene-boards", options->scene_boards,
+                      "boards of random scenes: all (printed, painted, decorated and glossy faces, markers, other "
+                      "sizes and hole layouts) or classic (the default board, matte, wood or low-contrast, no "
+                      "markers; --quick's default)")
       ->check(CLI::IsMember({"all", "classic"}))
       ->capture_default_str();
   command->add_option("--repeats", options->repeats, "repetitions per cell, independent seeds")
@@ -318,7 +319,7 @@ void add_suite_command(CLI::App& app, Runner& runner) {
     GivenOptions given;
     given.repeats = command->count("--repeats") > 0;
     given.count = command->count("--count") > 0;
-    given.scene_faces = command->count("--scene-faces") > 0;
+    given.scene_boards = command->count("--scene-boards") > 0;
     runner = [options, given] { return run_suite(*options, given); };
   });
 }
