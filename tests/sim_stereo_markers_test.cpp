@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 namespace l2s::sim {
 namespace {
@@ -32,7 +33,11 @@ cv::Mat gray_of(const Image& image) {
 }
 
 TEST(StereoMarkers, FoundInBothRectifiedImagesWithinHalfAPixelOfTheTruth) {
-  for (const std::string dictionary : {"DICT_4X4_50", "DICT_5X5_100", "DICT_6X6_250", "DICT_7X7_100"}) {
+  for (const auto& [dictionary, opencv_name] :
+       {std::pair<std::string, cv::aruco::PREDEFINED_DICTIONARY_NAME>{"DICT_4X4_50", cv::aruco::DICT_4X4_50},
+        {"DICT_5X5_100", cv::aruco::DICT_5X5_100},
+        {"DICT_6X6_250", cv::aruco::DICT_6X6_250},
+        {"DICT_7X7_100", cv::aruco::DICT_7X7_100}}) {
     SCOPED_TRACE(dictionary);
     SimulationConfig config = SimulationConfig::paper(1, "vlp16");
     config.frames = 1;
@@ -46,11 +51,7 @@ TEST(StereoMarkers, FoundInBothRectifiedImagesWithinHalfAPixelOfTheTruth) {
     const Eigen::Isometry3d T_cambody_board = simulator.board_pose().T_cambody_board();
     const MarkerLayout& layout = *config.target.markers;
 
-    const auto aruco = cv::aruco::getPredefinedDictionary(
-        dictionary == "DICT_4X4_50"    ? cv::aruco::DICT_4X4_50
-        : dictionary == "DICT_5X5_100" ? cv::aruco::DICT_5X5_100
-        : dictionary == "DICT_6X6_250" ? cv::aruco::DICT_6X6_250
-                                       : cv::aruco::DICT_7X7_100);
+    const auto aruco = cv::aruco::getPredefinedDictionary(opencv_name);
     const auto params = cv::aruco::DetectorParameters::create();
     params->cornerRefinementMethod = cv::aruco::CORNER_REFINE_SUBPIX;
     for (int camera = 0; camera < 2; ++camera) {
@@ -106,7 +107,8 @@ TEST(OtherBoards, ABoardOfItsOwnSizeMakesAValidDatasetWithItsHolesWhereTheTruthI
                                .render_camera(RayCaster(make_scene(config.target, simulator.board_pose())), 0);
   const Eigen::Isometry3d T_cambody_board = simulator.board_pose().T_cambody_board();
   for (const Eigen::Vector2d& centre : config.target.hole_centers()) {
-    const Eigen::Vector2d hole = simulator.config().rig.project(0, T_cambody_board * Eigen::Vector3d(centre.x(), centre.y(), 0.0));
+    const Eigen::Vector2d hole =
+        simulator.config().rig.project(0, T_cambody_board * Eigen::Vector3d(centre.x(), centre.y(), 0.0));
     const Eigen::Vector2d beside_xy = centre * (1.0 - 1.5 * config.target.hole_radius / centre.norm());
     const Eigen::Vector2d beside =
         simulator.config().rig.project(0, T_cambody_board * Eigen::Vector3d(beside_xy.x(), beside_xy.y(), 0.0));

@@ -97,7 +97,8 @@ void BoardDecals::add_text(const Eigen::Vector2d& start, double angle, double le
     }
     const double width = height * (0.45 + 0.35 * u);
     const Eigen::Vector2d mid(x + 0.5 * width, -0.5 * height);
-    shapes_.push_back(Shape{start + turned(mid, angle), Eigen::Vector2d(0.5 * width, 0.5 * height), angle, false, kInk});
+    shapes_.push_back(
+        Shape{start + turned(mid, angle), Eigen::Vector2d(0.5 * width, 0.5 * height), angle, false, kInk});
     x += width + 0.2 * height;
   }
 }
