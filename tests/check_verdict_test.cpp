@@ -240,6 +240,39 @@ TEST(CheckVerdict, MisalignmentDoesNotCountWhereTheBoardRefutesIt) {
   EXPECT_NE(judged(0.03, 0.047).verdict, Verdict::Ok);  // the board vouches for neither
 }
 
+// Random scene 530559979: a white board before a white wall, whose rims the
+// camera tilted 2.7 deg; the fit to that one pose turned the result 2.7 deg
+// about the board (185 mm off). The edges aligned best 5.0 px (0.50 deg)
+// away, where the lidar board would tilt 2.7 deg against the camera's. Made
+// elsewhere, such a transform would be refuted by the plane; fitted to that
+// very board, the plane agrees by construction and refutes nothing. The
+// hole centres still refute an optimum on texture (1468088629, above).
+TEST(CheckVerdict, AOnePoseFitsBoardTiltRefutesNothing) {
+  const CalibrationCheck::Params params;
+  const auto judged = [&](detail::BoardEvidence board, double centres_there) {
+    CalibrationCheck::Report report = agreeing();
+    report.misalignment = 0.50 * M_PI / 180;
+    report.misalignment_px = 5.0;
+    report.misalignment_gain = 0.20;
+    report.optimum_edge_score = 0.49;
+    for (auto& peak : report.peaks) peak.width = 0.01;  // [rad or m]
+    report.peaks[0].offset = 2.72 * M_PI / 180;         // rx: 4.7 half widths away
+    report.scores.plane_tilt = 0.07 * M_PI / 180;
+    report.scores.center_offset = 0.0008;
+    report.scores.depth_tilt = std::nan("");            // a white wall: no stereo texture to tilt
+    CalibrationCheck::Scores there = report.scores;
+    there.plane_tilt = 2.72 * M_PI / 180;
+    there.center_offset = centres_there;
+    report.optimum_board = there;
+    report.scene_misalignment = 0.2 * M_PI / 180;
+    detail::judge(report, params, 565.0, board);
+    return report.verdict;
+  };
+  EXPECT_EQ(judged(detail::BoardEvidence::Independent, 0.0034), Verdict::Ok);
+  EXPECT_EQ(judged(detail::BoardEvidence::FittedToOnePose, 0.0034), Verdict::Suspect);
+  EXPECT_EQ(judged(detail::BoardEvidence::FittedToOnePose, 0.0092), Verdict::Ok);
+}
+
 // A roll of the best alignment about the optical axis counts only where
 // many edges land there: a good random-scene result (2.5 mm, 0.04 deg) had
 // a sharp roll peak 1.2 deg away where 17 % of its edges scored.

@@ -157,9 +157,18 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   row.e_camera_centres = 0.0123;
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).e_lidar_centres, 0.0021);
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).e_camera_centres, 0.0123);
-  // results.csv of earlier releases have no centre errors, before that no
-  // check_reasons column, and before that no covered column: they still read.
-  EXPECT_TRUE(std::isnan(parse_csv_line(line.substr(0, line.rfind(",nan,nan"))).e_camera_centres));
+  EXPECT_TRUE(std::isnan(parse_csv_line(to_csv_line(row)).bound_t));
+  row.bound_t = 0.034;
+  row.bound_r = 0.0061;
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).bound_t, 0.034);
+  EXPECT_EQ(parse_csv_line(to_csv_line(row)).bound_r, 0.0061);
+  // results.csv of earlier releases have no stated bounds, before that no
+  // centre errors, before that no check_reasons column, and before that no
+  // covered column: they still read.
+  const std::string without_bounds = to_csv_line(row).substr(0, to_csv_line(row).rfind(",0.034"));
+  EXPECT_EQ(parse_csv_line(without_bounds).e_camera_centres, 0.0123);
+  EXPECT_TRUE(std::isnan(parse_csv_line(without_bounds).bound_r));
+  EXPECT_TRUE(std::isnan(parse_csv_line(line.substr(0, line.rfind(",nan,nan,nan,nan"))).e_camera_centres));
   const std::string without_reasons = line.substr(0, line.rfind(",\""));
   EXPECT_EQ(parse_csv_line(without_reasons).covered, 5);
   EXPECT_TRUE(parse_csv_line(without_reasons).check_reasons.empty());

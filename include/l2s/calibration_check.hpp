@@ -123,7 +123,8 @@ class L2S_EXPORT CalibrationCheck {
     /// favours it: there its lidar hole centres would lie more than this
     /// from the camera's holes in the board plane, while at the transform
     /// they lie within a third of it (or the outline or plane would turn
-    /// suspect there), and neither the edges off the board
+    /// suspect there; the plane not for a result fitted to one pose of this
+    /// board, whose plane agrees by construction), and neither the edges off the board
     /// (Report::scene_misalignment, which an unsynchronised board makes)
     /// nor the lidar depths off the board (Scores::depth_tilt) agree better
     /// there. Texture then drew the edges: random scene 1468088629, bricks

@@ -85,6 +85,12 @@ void judge_consensus(CalibrationCheck::Report& report, const Calibrator::Result&
   }
 }
 
+/// A fit to one board pose made the lidar board agree with the camera's (BoardEvidence).
+BoardEvidence board_evidence(const Calibrator::Result& result) {
+  const auto used = std::count_if(result.poses.begin(), result.poses.end(), [](const PoseReport& p) { return p.used; });
+  return used == 1 ? BoardEvidence::FittedToOnePose : BoardEvidence::Independent;
+}
+
 bool has_outlier_frames(const Calibrator::Result& result) {
   for (const PoseReport& pose : result.poses)
     if (!pose.lidar_outlier_frames.empty() || !pose.camera_outlier_frames.empty()) return true;
@@ -131,14 +137,14 @@ void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& kep
     report.alternatives.clear();
     report.preferred = -1;
     report.ambiguous = false;
-    report.reasons.clear();
-    judge(report, params.check, cameras.left.fx());
   } else if (report.preferred >= 0 &&
       adopt(result, report.alternatives[report.preferred], report.scores.support, params, camera_range)) {
     const double milliseconds = report.milliseconds;
     report = check.check(frames, result.T_lidar_camera, alternatives());
     report.milliseconds += milliseconds;
   }
+  // Judged again with what the check cannot know: how the fit used the board.
+  judge(report, params.check, cameras.left.fx(), board_evidence(result));
   judge_consensus(report, result);
   judge_uncertainty(report, result.joint.uncertainty, result.joint.T_target_source, params);
   result.quality = std::move(report);

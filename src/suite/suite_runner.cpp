@@ -6,6 +6,7 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
+#include <l2s/fit_uncertainty.hpp>
 #include <l2s/metrics.hpp>
 #include <l2s/pose.hpp>
 #include <l2s/sim/random_scene.hpp>
@@ -46,6 +47,10 @@ void set_outcome(SuiteRow& row, bool found, const std::string& reason, const Eig
   row.reason = reason;
   if (!found) return;
   row.covered = covered_dofs(T, u, T_true);
+  if (u.valid) {
+    row.bound_t = translation_bound_95(u);
+    row.bound_r = rotation_bound_95(u, T);
+  }
   const PoseError error = pose_error(T, T_true);
   row.e_t = error.translation;
   row.e_r = error.rotation;

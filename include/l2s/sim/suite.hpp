@@ -109,6 +109,11 @@ struct L2S_SUITE_EXPORT SuiteRow {
   /// centres, in that sensor's frame: which branch an error comes from (NaN on failure)
   double e_lidar_centres = std::nan("");
   double e_camera_centres = std::nan("");
+  /// [m], [rad] The result's stated 95 % bounds on its translation and
+  /// rotation (translation_bound_95, rotation_bound_95): an error beyond
+  /// them is one the result did not admit to (NaN: no valid uncertainty)
+  double bound_t = std::nan("");
+  double bound_r = std::nan("");
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;
