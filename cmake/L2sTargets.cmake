@@ -7,6 +7,20 @@ function(l2s_set_warnings target)
   endif()
 endfunction()
 
+# l2s_optimize_as_glue(target): compile `target` at -O1 instead of the build
+# type's -O3. For code that orchestrates and reports (the tests, the suite's
+# bookkeeping, the command-line tool) while the work runs in the libraries,
+# which keep -O3: -O3's inlining of Eigen's, the standard library's and
+# GoogleTest's templates is most of such a source's compile time (measured:
+# suite_stats.cpp 9.0 -> 6.8 s, the tool's main.cpp 12.6 -> 8.0 s, three test
+# sources 27.7 -> 18.8 s), and it runs no slower for it.
+function(l2s_optimize_as_glue target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE
+      $<$<OR:$<CONFIG:Release>,$<CONFIG:RelWithDebInfo>>:-O1>)
+  endif()
+endfunction()
+
 if(L2SCALIB_BUILD_SHARED)
   set(L2S_LIBRARY_TYPE SHARED)
 else()
