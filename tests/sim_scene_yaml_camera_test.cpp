@@ -70,6 +70,7 @@ TEST(SceneYamlCamera, WhatTheRecordWritesReadsBack) {
   rig.horizontal_fov = 1.5;
   rig = rig.with_real_lenses(DistortionModel::PlumbBob);
   rig.raw_images = true;
+  rig.roll = 1.5707963267948966;  // on its side
   Appearance look;
   look.board = BoardTexture::WoodGrain;
   look.background = Background::Bricks;
@@ -90,6 +91,7 @@ TEST(SceneYamlCamera, WhatTheRecordWritesReadsBack) {
     EXPECT_EQ(c.rig.lenses[i].focal_scale, rig.lenses[i].focal_scale);
   }
   EXPECT_EQ(c.rig.right_rotation, rig.right_rotation);
+  EXPECT_EQ(c.rig.roll, rig.roll);
   EXPECT_EQ(c.appearance.board, BoardTexture::WoodGrain);
   EXPECT_EQ(c.appearance.background, Background::Bricks);
   EXPECT_TRUE(c.appearance.shadows);
@@ -112,6 +114,7 @@ TEST(SceneYamlCamera, BadInputNamesTheKey) {
                 .find("camera.right.distortion.coefficients"),
             std::string::npos);
   EXPECT_NE(message("camera: {right_offset: [0, 0]}").find("camera.right_offset"), std::string::npos);
+  EXPECT_NE(message("camera: {roll: .nan}").find("camera.roll"), std::string::npos);
   EXPECT_NE(message("appearance: {background: brick}").find("appearance.background"), std::string::npos);
   EXPECT_NE(message("appearance: {shadow: true}").find("appearance.shadow"), std::string::npos);
   EXPECT_NE(message("appearance: {blur_sigma: 9}").find("appearance.blur_sigma"), std::string::npos);

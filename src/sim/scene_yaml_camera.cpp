@@ -114,12 +114,13 @@ void emit_lens(YAML::Emitter& out, const char* key, const CameraLens& lens) {
 void read_camera_block(const YAML::Node& camera, const std::string& origin, StereoRig* rig) {
   const BlockReader r(origin);
   const std::string where = "camera";
-  r.only_keys(camera, where, {"width", "height", "horizontal_fov", "baseline", "distortion", "raw_images",
+  r.only_keys(camera, where, {"width", "height", "horizontal_fov", "baseline", "roll", "distortion", "raw_images",
                               "right_rotation", "right_offset", "left", "right"});
   r.read(camera, "width", where, &rig->width);
   r.read(camera, "height", where, &rig->height);
   r.read(camera, "horizontal_fov", where, &rig->horizontal_fov);
   r.read(camera, "baseline", where, &rig->baseline);
+  r.read(camera, "roll", where, &rig->roll);
   // A typical real pair first, so that explicit keys below refine it.
   r.name(camera, "distortion", where, [&](const std::string& text, const std::string& field) {
     *rig = rig->with_real_lenses(distortion_model_from_name(text, field));
@@ -168,6 +169,7 @@ void emit_camera_block(YAML::Emitter& out, const StereoRig& rig) {
   out << YAML::Key << "height" << YAML::Value << rig.height;
   out << YAML::Key << "horizontal_fov" << YAML::Value << rig.horizontal_fov;
   out << YAML::Key << "baseline" << YAML::Value << rig.baseline;
+  if (rig.roll != 0.0) out << YAML::Key << "roll" << YAML::Value << rig.roll;
   if (!rig.ideal() || rig.raw_images) {
     out << YAML::Key << "raw_images" << YAML::Value << rig.raw_images;
     emit_vector(out, "right_rotation", rig.right_rotation);

@@ -49,10 +49,13 @@ void SimulationConfig::validate() const {
 }
 
 Eigen::Isometry3d SimulationConfig::T_lidar_camera() const {
-  // The setting places the lidar relative to the physical left camera; only
-  // rectified images of a non-ideal rig live in another (rotated) frame.
-  if (rig.ideal() || rig.images() == ImageKind::Raw) return setting.T_lidar_camera();
-  return setting.T_lidar_camera() * rig.T_optical_camera();
+  // The setting places the lidar relative to the camera body, the level
+  // rig's left camera; the rig's roll turns the physical left camera in it,
+  // and rectified images of a non-ideal rig live in another (rotated) frame.
+  const Eigen::Isometry3d T_lidar_optical =
+      rig.roll == 0.0 ? setting.T_lidar_camera() : setting.T_cambody_lidar().inverse() * rig.T_cambody_optical(0);
+  if (rig.ideal() || rig.images() == ImageKind::Raw) return T_lidar_optical;
+  return T_lidar_optical * rig.T_optical_camera();
 }
 
 struct DatasetSimulator::Impl {

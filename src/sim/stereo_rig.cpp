@@ -102,19 +102,32 @@ StereoCamera StereoRig::cameras() const {
   return pair;
 }
 
-Eigen::Isometry3d StereoRig::T_cambody_optical(int index) const {
+namespace {
+
+/// Camera body <- optical frame of camera `index` of the level rig.
+Eigen::Isometry3d level_cambody_optical(const StereoRig& rig, int index) {
   Eigen::Isometry3d T = sim::T_cambody_optical();
   if (index != 1) return T;
-  if (right_rotation.isZero(0.0) && right_offset.isZero(0.0)) {
+  if (rig.right_rotation.isZero(0.0) && rig.right_offset.isZero(0.0)) {
     // The right camera sits one baseline along +x_opt, i.e. along -y_body.
-    T.translation() = Eigen::Vector3d(0.0, -baseline, 0.0);
+    T.translation() = Eigen::Vector3d(0.0, -rig.baseline, 0.0);
     return T;
   }
   Eigen::Isometry3d T_left_right = Eigen::Isometry3d::Identity();
-  const double angle = right_rotation.norm();
-  if (angle > 0.0) T_left_right.linear() = Eigen::AngleAxisd(angle, right_rotation / angle).toRotationMatrix();
-  T_left_right.translation() = Eigen::Vector3d(baseline, 0.0, 0.0) + right_offset;
+  const double angle = rig.right_rotation.norm();
+  if (angle > 0.0) T_left_right.linear() = Eigen::AngleAxisd(angle, rig.right_rotation / angle).toRotationMatrix();
+  T_left_right.translation() = Eigen::Vector3d(rig.baseline, 0.0, 0.0) + rig.right_offset;
   return T * T_left_right;
+}
+
+}  // namespace
+
+Eigen::Isometry3d StereoRig::T_cambody_optical(int index) const {
+  const Eigen::Isometry3d level = level_cambody_optical(*this, index);
+  if (roll == 0.0) return level;
+  // Turning the camera anticlockwise about the forward axis (as seen from
+  // behind) is a right-handed turn about body x.
+  return Eigen::Isometry3d(Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX())) * level;
 }
 
 Eigen::Isometry3d StereoRig::T_optical_camera() const {
@@ -161,6 +174,7 @@ void StereoRig::validate() const {
   if (!(horizontal_fov > 0.05 && horizontal_fov < 3.0))
     throw ParamError("camera.horizontal_fov", "must be in (0.05, 3.0) rad");
   if (!(baseline > 0.0 && baseline < 5.0)) throw ParamError("camera.baseline", "must be in (0, 5) m");
+  if (!std::isfinite(roll)) throw ParamError("camera.roll", "must be a finite angle [rad]");
   for (int i = 0; i < 2; ++i) lenses[static_cast<std::size_t>(i)].validate(kLensField[i], width, height);
   if (!(right_rotation.allFinite() && right_rotation.norm() <= 0.1))
     throw ParamError("camera.right_rotation", "must be a rotation vector of at most 0.1 rad");

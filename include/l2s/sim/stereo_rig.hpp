@@ -23,7 +23,8 @@ namespace l2s::sim {
 ///
 /// Frames: the camera body frame (x forward, y left, z up) has its origin at
 /// the left camera's optical centre and is aligned with the left *physical*
-/// camera. The right physical camera sits at
+/// camera of a level rig; a rolled rig turns both cameras about the left
+/// optical axis (body x) by `roll`. The right physical camera sits at
 /// T_left_right = [R(right_rotation) | (baseline, 0, 0) + right_offset] in the
 /// left optical frame.
 struct L2S_SIM_EXPORT StereoRig {
@@ -31,6 +32,12 @@ struct L2S_SIM_EXPORT StereoRig {
   int height = 960;                ///< [px] 16..16384
   double horizontal_fov = 0.7505;  ///< [rad] nominal full horizontal field of view, (0.05, 3.0)
   double baseline = 0.12;          ///< [m] right camera sits at -baseline along body y, (0, 5)
+  /// [rad] The rig turned about the left optical axis, any angle: users mount
+  /// pairs on their side (90 deg) or upside down (180 deg). Right-handed
+  /// about the forward axis: at +90 deg the camera's right points down (it
+  /// turned clockwise, seen from behind) and what was right of the image
+  /// centre appears above it.
+  double roll = 0.0;
 
   // --- The physical pair (defaults: the ideal rectified pair of the paper) ---
   std::array<CameraLens, 2> lenses;  ///< left (0) and right (1) camera lens

@@ -48,6 +48,7 @@ struct SimulateOptions {
   int height = 960;
   double hfov_deg = 43.0;
   double baseline = 0.12;
+  double roll_deg = 0.0;
   std::string distortion = "none";
   std::string board_texture = "matte";
   std::string background = "textured";
@@ -73,6 +74,7 @@ void apply_camera_options(const SimulateOptions& options, const CLI::App& comman
   if (given("--height")) rig.height = options.height;
   if (given("--hfov")) rig.horizontal_fov = options.hfov_deg * 3.141592653589793 / 180.0;
   if (given("--baseline")) rig.baseline = options.baseline;
+  if (given("--roll")) rig.roll = options.roll_deg * 3.141592653589793 / 180.0;
   // After size and field of view: the typical lenses depend on both.
   if (given("--distortion"))
     rig = rig.with_real_lenses(sim::distortion_model_from_name(options.distortion, "--distortion"));
@@ -88,6 +90,9 @@ void add_camera_options(CLI::App* command, SimulateOptions* options) {
   command->add_option("--hfov", options->hfov_deg, "horizontal field of view [deg]")
       ->check(CLI::Range(3.0, 170.0));
   command->add_option("--baseline", options->baseline, "stereo baseline [m]")->check(CLI::Range(0.01, 5.0));
+  command->add_option("--roll", options->roll_deg,
+                      "the rig turned about its optical axis [deg] (90: on its side, 180: upside down)")
+      ->check(CLI::Range(-360.0, 360.0));
   command->add_option("--distortion", options->distortion,
                       "lenses of a real pair with this distortion, raw images (none: rectified)")
       ->check(CLI::IsMember({"none", "plumb_bob", "equidistant"}));
