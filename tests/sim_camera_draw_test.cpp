@@ -159,7 +159,9 @@ TEST(CameraSceneDraw, BoardsOfOtherSizesAndHoleLayoutsAlwaysValidWithMarkersThat
 
 TEST(RandomScene, TheBoardsDrawLeavesTheRestOfTheSceneAsItWas) {
   int faces = 0, markers = 0;
-  for (const std::uint64_t seed : {1, 3}) {  // seed 1 draws markers, 3 a printed face
+  // Seed 1 draws markers, 8 a printed face; neither another rig or a roll
+  // (those are drawn apart as well: sim_mounting_test).
+  for (const std::uint64_t seed : {1, 8}) {
     const RandomScene all = make_random_scene(seed, 1, 1.0, 1, BoardDraw::All);
     const RandomScene classic = make_random_scene(seed, 1, 1.0, 1, BoardDraw::Classic);
     SCOPED_TRACE(all.summary);

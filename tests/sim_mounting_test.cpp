@@ -2,6 +2,7 @@
 // axis, a lidar upside down. The simulator must image the same world from
 // the turned sensor and state the truth in the turned sensor's frame.
 
+#include <l2s/sim/mounting_draw.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <random>
 
 namespace l2s::sim {
 namespace {
@@ -129,6 +131,40 @@ TEST(SimMounting, AnUpsideDownLidarsBoardReturnsLieOnTheTrueBoardPlane) {
   EXPECT_LT(flipped_on_board, 1.3 * upright_on_board);
   // ... and none of the flipped returns lies on the board as the upright frame would put it.
   EXPECT_LT(returns_on_board(flipped.sweep(0), upright_truth, 0.005, 0.15), flipped_on_board / 10);
+}
+
+// The draws' shares, over many draws: a third of the rigs rolled beyond
+// 20 deg, among them on their side and upside down; 15 % of the lidars
+// upside down; a quarter of the rigs one of the three rigs users bring
+// besides the common ones, each valid and rectifiable.
+TEST(MountingDraw, RollsFlipsAndRigsComeInTheirShares) {
+  constexpr int kDraws = 3000;
+  int rolled = 0, on_side = 0, upside_down = 0, flipped = 0, special = 0, toed_in = 0;
+  for (int i = 0; i < kDraws; ++i) {
+    std::mt19937_64 mounts(static_cast<std::uint64_t>(i)), rigs(static_cast<std::uint64_t>(i) + 1000003);
+    StereoRig rig;
+    SensorSetting lidar;
+    draw_mounting(mounts, &rig, &lidar);
+    const double roll_deg = std::abs(std::remainder(rig.roll, 2.0 * kPi)) * 180.0 / kPi;
+    rolled += roll_deg > 19.999;
+    on_side += std::abs(roll_deg - 90.0) < 1e-9;
+    upside_down += std::abs(roll_deg - 180.0) < 1e-9;
+    EXPECT_TRUE(roll_deg < 1e-12 || roll_deg > 19.999) << "level or rolled beyond 20 deg";
+    flipped += std::cos(lidar.roll) < 0.0;
+    const StereoRig drawn = rig;
+    draw_special_rig(rigs, &rig);
+    EXPECT_EQ(rig.roll, drawn.roll);
+    if (rig.width == drawn.width && rig.baseline == drawn.baseline) continue;
+    ++special;
+    toed_in += rig.right_rotation.y() < -0.9 * kPi / 180.0;
+    if (i < 40) EXPECT_NO_THROW(rig.cameras()) << rig.width << "x" << rig.height;
+  }
+  EXPECT_NEAR(rolled, kDraws / 3, kDraws / 30);
+  EXPECT_NEAR(on_side, kDraws / 6, kDraws / 30);
+  EXPECT_NEAR(upside_down, kDraws / 12, kDraws / 30);
+  EXPECT_NEAR(flipped, 0.15 * kDraws, kDraws / 30);
+  EXPECT_NEAR(special, kDraws / 4, kDraws / 30);
+  EXPECT_NEAR(toed_in, special / 3, special / 10) << "the 5 MP wide pairs";
 }
 
 }  // namespace

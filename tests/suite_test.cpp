@@ -162,6 +162,17 @@ TEST(SuiteCsv, LineRoundTripKeepsEveryField) {
   row.bound_r = 0.0061;
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).bound_t, 0.034);
   EXPECT_EQ(parse_csv_line(to_csv_line(row)).bound_r, 0.0061);
+  EXPECT_TRUE(std::isnan(parse_csv_line(to_csv_line(row)).roll));
+  row.face = "noise-print";
+  row.markers = "DICT_5X5_100";
+  row.roll = -0.5 * M_PI;
+  row.lens = "raw plumb_bob";
+  const SuiteRow drawn = parse_csv_line(to_csv_line(row));
+  EXPECT_EQ(drawn.face, "noise-print");
+  EXPECT_EQ(drawn.markers, "DICT_5X5_100");
+  EXPECT_NEAR(drawn.roll, -0.5 * M_PI, 1e-12);
+  EXPECT_EQ(drawn.lens, "raw plumb_bob");
+  EXPECT_TRUE(parse_csv_line(to_csv_line(row).substr(0, to_csv_line(row).rfind(",noise-print"))).face.empty());
   // results.csv of earlier releases have no stated bounds, before that no
   // centre errors, before that no check_reasons column, and before that no
   // covered column: they still read.
@@ -313,6 +324,32 @@ TEST(SuiteStats, SummarySortsTheVerdictsByTheTrueError) {
   EXPECT_NE(summary.find("| beyond 10 cm or 2 deg | 1 | 0 | 0 | 1 |"), std::string::npos) << summary;
   EXPECT_EQ(summary.find("were not ok"), std::string::npos) << "no false alarm, no list";
   EXPECT_EQ(summary.find("called ok"), std::string::npos) << "no missed error, no list";
+}
+
+// Random scenes split by what was drawn, and the silently wrong results
+// listed: ok, off by more than 2 cm or 0.5 deg, and beyond their stated bound.
+TEST(SuiteStats, ScenesSummarySplitsByWhatWasDrawnAndListsTheSilentlyWrong) {
+  std::vector<SuiteRow> rows(4, sample_row());
+  for (int i = 0; i < 4; ++i) {
+    rows[i].experiment = "scenes";
+    rows[i].setting = i + 1;
+    rows[i].e_t = 0.003, rows[i].e_r = 0.001, rows[i].verdict = "ok";
+    rows[i].bound_t = 0.04, rows[i].bound_r = 0.01;
+    rows[i].face = i < 2 ? "matte" : "speckle";
+    rows[i].roll = i == 3 ? M_PI : 0.0;
+    rows[i].lens = "rectified";
+  }
+  rows[1].e_t = 0.03;   // wrong, within its bound: honest
+  rows[2].e_t = 0.185;  // wrong, beyond its bound: silently wrong
+  rows[2].markers = "DICT_6X6_250";
+  rows[3].success = false;
+  const std::string summary = suite_summary_markdown(rows);
+  EXPECT_NE(summary.find("| matte | 2 | 2 | 16.5 | 0.06 | 1 / 0 / 0 | 0 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("| speckle | 2 | 1 | 185.0 | 0.06 | 1 / 0 / 0 | 1 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("| markers | 1 | 1 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("| > 100 deg | 1 | 0 |"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- paper: 1 of 3 calibrated\n  - scene 3 (seed 123456789; ): 185.0 mm"), std::string::npos)
+      << summary;
 }
 
 TEST(SuiteStats, SummaryListsWhyGoodResultsWereNotOkAndWhichOffOnesWere) {

@@ -140,6 +140,10 @@ std::string CameraSceneDraw::summary() const {
   std::string line = text;
   line += rig.images() == ImageKind::Raw ? std::string("raw ") + name_of(rig.lenses[0].distortion.model)
                                          : std::string("rectified");
+  if (rig.roll != 0.0) {
+    std::snprintf(text, sizeof text, " rolled %.0fdeg", rig.roll / kDeg);
+    line += text;
+  }
   line += std::string(" | ") + name_of(appearance.board) + " on ";
   if (open_space) {
     line += "open space";

@@ -8,8 +8,10 @@
 #include <l2s/sim/board_draw.hpp>
 #include <l2s/sim/camera_scene_draw.hpp>
 #include <l2s/sim/lidar_scene_draw.hpp>
+#include <l2s/sim/mounting_draw.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "sim/random.hpp"
@@ -23,6 +25,8 @@ constexpr std::uint64_t kSceneStream = 0x5CE9EULL;
 constexpr std::uint64_t kFaceStream = 0xFACE5ULL;
 constexpr std::uint64_t kMarkerStream = 0xA1C0ULL;
 constexpr std::uint64_t kBoardStream = 0xB0A4DULL;
+constexpr std::uint64_t kRigStream = 0x5E7E0ULL;
+constexpr std::uint64_t kMountStream = 0x0A7C4ULL;
 constexpr double kNearest = 1.5;             // [m] the lidar draw's nearest board
 constexpr double kMinHolePixels = 10.0;      // [px] hole radius in the image at the farthest board
 constexpr double kMinBoardDisparity = 10.0;  // [px] disparity at the farthest board
@@ -90,6 +94,12 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
       draw_board_face(face_rng, &camera.appearance);
     }
     LidarSceneDraw lidar = draw_lidar_scene(rng);
+    if (boards == BoardDraw::All) {
+      std::mt19937_64 rig_rng(detail::hash_counters(seed, kRigStream, static_cast<std::uint64_t>(draw)));
+      draw_special_rig(rig_rng, &camera.rig);
+      std::mt19937_64 mount_rng(detail::hash_counters(seed, kMountStream, static_cast<std::uint64_t>(draw)));
+      draw_mounting(mount_rng, &camera.rig, &lidar.lidar_pose);
+    }
     Target board;
     if (boards == BoardDraw::All) {
       std::mt19937_64 board_rng(detail::hash_counters(seed, kBoardStream, static_cast<std::uint64_t>(draw)));
@@ -111,8 +121,9 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
       last_failure = error.what();
       continue;
     }
-    scene.summary = camera.summary() + board_summary(board) + " | " +
-                    lidar.lidar + (lidar.quirks.any() ? " (quirks)" : "") + ", board " +
+    const bool upside_down = std::cos(lidar.lidar_pose.roll) < 0.0;
+    scene.summary = camera.summary() + board_summary(board) + " | " + lidar.lidar +
+                    (upside_down ? " upside down" : "") + (lidar.quirks.any() ? " (quirks)" : "") + ", board " +
                     std::to_string(scene.simulator->board_pose().x).substr(0, 4) + " m";
     return scene;
   }

@@ -21,11 +21,13 @@ namespace {
 constexpr const char* kHeader =
     "experiment,setting,lidar,noise_k,frames,preset,seed,repetition,success,reason,e_t_m,e_r_rad,"
     "lidar_frames,camera_frames,wall_s,scene,verdict,covered,check_reasons,e_lidar_centres_m,e_camera_centres_m,"
-    "bound_t_m,bound_r_rad";
-constexpr std::size_t kColumns = 23;
-// results.csv of earlier releases: without the stated bounds, before that
+    "bound_t_m,bound_r_rad,face,markers,roll_deg,lens";
+constexpr std::size_t kColumns = 27;
+// results.csv of earlier releases: without what a scene drew, before that
+// without the stated bounds, before that
 // without the centres' errors, before that without check_reasons, and before
 // that without covered
+constexpr std::size_t kColumnsBeforeDraws = 23;
 constexpr std::size_t kColumnsBeforeBounds = 21;
 constexpr std::size_t kColumnsBeforeCentres = 19;
 constexpr std::size_t kColumnsBeforeReasons = 18;
@@ -102,13 +104,14 @@ std::string to_csv_line(const SuiteRow& r) {
       << number(r.e_r, 17) << ',' << r.lidar_frames << ',' << r.camera_frames << ','
       << number(r.wall_s, 4) << ',' << quote(r.scene) << ',' << quote(r.verdict) << ',' << r.covered << ','
       << quote(r.check_reasons) << ',' << number(r.e_lidar_centres, 17) << ',' << number(r.e_camera_centres, 17)
-      << ',' << number(r.bound_t, 17) << ',' << number(r.bound_r, 17);
+      << ',' << number(r.bound_t, 17) << ',' << number(r.bound_r, 17) << ',' << quote(r.face) << ','
+      << quote(r.markers) << ',' << number(r.roll * 180.0 / M_PI, 6) << ',' << quote(r.lens);
   return out.str();
 }
 
 SuiteRow parse_csv_line(const std::string& line) {
   const auto f = split_csv(line);
-  if (f.size() != kColumns && f.size() != kColumnsBeforeBounds && f.size() != kColumnsBeforeCentres &&
+  if (f.size() != kColumns && f.size() != kColumnsBeforeDraws && f.size() != kColumnsBeforeBounds && f.size() != kColumnsBeforeCentres &&
       f.size() != kColumnsBeforeReasons && f.size() != kColumnsBeforeCovered)
     throw Error("expected " + std::to_string(kColumns) + " fields, found " + std::to_string(f.size()));
   try {
@@ -142,6 +145,12 @@ SuiteRow parse_csv_line(const std::string& line) {
     if (f.size() > kColumnsBeforeBounds) {
       r.bound_t = to_double(f[21]);
       r.bound_r = to_double(f[22]);
+    }
+    if (f.size() > kColumnsBeforeDraws) {
+      r.face = f[23];
+      r.markers = f[24];
+      r.roll = to_double(f[25]) * M_PI / 180.0;
+      r.lens = f[26];
     }
     return r;
   } catch (const std::logic_error& error) {  // std::stoi and friends

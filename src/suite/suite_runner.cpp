@@ -119,6 +119,16 @@ struct GroupData {
   std::string scene;                            // what a random scene drew
 };
 
+/// What a random scene drew, in the row's own columns.
+SuiteRow with_scene_draw(SuiteRow row, const SimulationConfig& config) {
+  row.face = name_of(config.appearance.board);
+  if (config.target.markers) row.markers = config.target.markers->dictionary;
+  row.roll = std::remainder(config.rig.roll, 2.0 * M_PI);
+  row.lens = config.rig.images() == ImageKind::Raw ? std::string("raw ") + name_of(config.rig.lenses[0].distortion.model)
+                                                   : "rectified";
+  return row;
+}
+
 // One simulator per lidar; the first that places the board fixes the pose
 // for the others, so they render the same scene (and the same images).
 GroupData simulate_group(const SuiteGroup& group, const std::vector<SuiteCell>& cells, int threads) {
@@ -192,10 +202,12 @@ void add_frame(int i, const SuiteGroup& group, const GroupData& data, std::vecto
     std::optional<Calibrator::Result> result;
     if (evaluated) result = run.calibrator->result();
     run.seconds += seconds_since(start) + camera.at(run.cell->preset).milliseconds * 1e-3;
-    if (result)
-      evaluations[run.cell].push_back(
-          with_centre_errors(evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds, data.scene),
-                             *result, *run.simulator));
+    if (!result) continue;
+    SuiteRow row = with_centre_errors(
+        evaluate(*run.cell, *result, run.simulator->T_lidar_camera(), run.seconds, data.scene), *result,
+        *run.simulator);
+    if (group.experiment == "scenes") row = with_scene_draw(std::move(row), run.simulator->config());
+    evaluations[run.cell].push_back(std::move(row));
   }
 }
 

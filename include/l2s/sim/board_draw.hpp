@@ -13,9 +13,11 @@ namespace l2s::sim {
 
 /// Which boards randomised scenes draw (make_random_scene).
 enum class BoardDraw {
-  All,      ///< every face, markers, size and hole layout (the draws below)
-  Classic,  ///< the default board without markers, matte, wood or low-contrast: each seed's scene as
-            ///< drawn before the other boards existed
+  /// every face, markers, size and hole layout (the draws below), and the
+  /// rigs and mountings of mounting_draw.hpp
+  All,
+  Classic,  ///< the default board without markers, matte, wood or low-contrast, a level rig of the common
+            ///< sizes, an upright lidar: each seed's scene as drawn before the other boards existed
 };
 
 /// Draws the board's face over `look`: in about half the draws one of the

@@ -114,6 +114,11 @@ struct L2S_SUITE_EXPORT SuiteRow {
   /// them is one the result did not admit to (NaN: no valid uncertainty)
   double bound_t = std::nan("");
   double bound_r = std::nan("");
+  // --- scenes: what was drawn, in columns of their own (empty / NaN otherwise) ---
+  std::string face;           ///< the board's face (name_of(BoardTexture)): matte, wood, speckle, ...
+  std::string markers;        ///< the markers' dictionary (DICT_...), empty for a board without
+  double roll = std::nan(""); ///< [rad] the rig's roll about its optical axis, (-pi, pi]
+  std::string lens;           ///< rectified | raw plumb_bob | raw equidistant
 
   /// The key of the cell it belongs to (SuiteCell::key).
   std::string cell_key() const;

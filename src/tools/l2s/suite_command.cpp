@@ -294,9 +294,10 @@ void add_suite_command(CLI::App& app, Runner& runner) {
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   command->add_option("--scene-boards", options->scene_boards,
-                      "boards of random scenes: all (printed, painted, decorated and glossy faces, markers, other "
-                      "sizes and hole layouts) or classic (the default board, matte, wood or low-contrast, no "
-                      "markers; --quick's default)")
+                      "boards and mountings of random scenes: all (printed, painted, decorated and glossy faces, "
+                      "markers, other sizes and hole layouts; rolled rigs, upside-down lidars, depth-camera, 5 MP "
+                      "and long-baseline pairs) or classic (the default board, matte, wood or low-contrast, no "
+                      "markers, a level rig, an upright lidar; --quick's default)")
       ->check(CLI::IsMember({"all", "classic"}))
       ->capture_default_str();
   command->add_option("--repeats", options->repeats, "repetitions per cell, independent seeds")
