@@ -137,6 +137,12 @@ class L2S_EXPORT Calibrator {
     CircleFinder::Params camera_circles;
     BoardVerifier::Params camera_verifier;
     bool refine_camera_pose = true;  ///< fit the board pose to the hole rims in both images
+    /// A target with markers whose board the stereo search does not find (a
+    /// printed face SGM cannot tell from its surroundings): take the pose
+    /// their corners give in both images, refined on the rims, where the
+    /// rims converge and no hole is seen covered (false: the stereo search
+    /// alone, as the paper)
+    bool board_from_markers = true;
     BoardPoseRefiner::Params board_refiner;
     // Mono camera (lidar-mono): the board by its ArUco markers, refined with the rims.
     MonoBoardDetector::Params mono;

@@ -62,6 +62,7 @@ Calibrator::Params Calibrator::Params::preset(const std::string& name) {
   params.camera_circles = CircleFinder::Params::paper();
   params.edges.sobel_threshold = 128.0;
   params.refine_camera_pose = false;
+  params.board_from_markers = false;  // the paper's board has no markers
   params.locate_board = false;  // one full-frame SGM pass, as the paper
   params.accumulator.cluster_tolerance = 0.02;
   params.accumulator.estimator = CenterAccumulator::Estimator::Mean;

@@ -1,7 +1,9 @@
 #include "calibrator/branches.hpp"
 
 #include "camera/cv_image.hpp"
+#include "camera/marker_detection.hpp"
 #include "camera/stereo_cloud_subset.hpp"
+#include "camera/stereo_marker_pose.hpp"
 #include "detail/board_frame.hpp"
 #include "plane/plane_fit.hpp"
 #include "verify/hypothesis_search.hpp"
@@ -343,6 +345,56 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
   }
 }
 
+/// The board from its printed markers, when the stereo search found none (a
+/// printed face SGM cannot tell from its surroundings): the pose their
+/// corners give in both images (stereo_marker_pose.hpp), refined on the hole
+/// rims where those converge (`refined` is reset where they do not: the
+/// texture of a printed face draws the rim search off), and kept only when
+/// no hole is seen blocked by the board's own face. `why` says how, or why
+/// not.
+std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::string& why) {
+  const MarkerLayout& layout = *f.target.markers;
+  const auto left = find_target_markers(f.left_gray, layout), right = find_target_markers(f.right_gray, layout);
+  const StereoMarkerPose pose = stereo_pose_from_markers(left, right, layout, f.cameras);
+  std::ostringstream text;
+  text << left.size() << " of the target's " << layout.ids.size() << " markers in the left image, " << right.size()
+       << " in the right";
+  if (!pose.found) {
+    why = text.str() + ": no board pose facing the camera";
+    return std::nullopt;
+  }
+  const double rms = std::max(pose.rms_left_px, pose.rms_right_px);
+  if (rms > f.params.mono.max_marker_rms_px) {
+    text.precision(2);
+    text << ": their corners fit one board pose only to " << std::fixed << rms << " px";
+    why = text.str();
+    return std::nullopt;
+  }
+  CameraAttempt attempt;
+  attempt.T_camera_board = pose.T_camera_board;
+  attempt.refined = BoardPoseRefiner(f.params.board_refiner)
+                        .refine(f.left, f.right, f.cameras, f.target, pose.T_camera_board);
+  if (attempt.refined->converged) {
+    text << ", refined on the rims";
+  } else {
+    text << "; the rims did not converge there (" << attempt.refined->reason << "): the markers' pose kept";
+    attempt.refined.reset();
+  }
+  const Eigen::Isometry3d& T = attempt.refined ? attempt.refined->T_camera_board : attempt.T_camera_board;
+  StereoEvidenceParams evidence_params;
+  evidence_params.max_depth = f.params.stereo.max_depth;
+  const BoardEvidence evidence =
+      stereo_evidence(f.left_gray, f.right_gray, f.cameras, T, f.target, f.params.camera_verifier, evidence_params);
+  for (int h = 0; h < 4; ++h)
+    if (evidence.hole_blocked[h] >= f.params.camera_verifier.min_samples &&
+        evidence.hole_blocked[h] > evidence.hole_open[h]) {
+      why = text.str() + "; the images show hole " + std::to_string(h) + " covered where their pose puts it";
+      return std::nullopt;
+    }
+  why = text.str();
+  return attempt;
+}
+
 }  // namespace
 
 CameraSetup::CameraSetup(const StereoCamera& given) : cameras(given) {
@@ -367,26 +419,47 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   const StereoCamera& cameras = setup.cameras;
   const CameraFrame frame{left, right, gray_mat(left, "left"), gray_mat(right, "right"), cameras, target, params};
   const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
-  if (!planes) return report;
-
-  CameraHypothesisTester tester(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
-  const std::optional<std::shared_ptr<CameraAttempt>> found =
-      search_hypotheses<std::shared_ptr<CameraAttempt>>(*planes, BoardVerifier(params.camera_verifier),
-                                                        t.hypotheses, tester);
-  report.hypotheses = static_cast<int>(t.hypotheses.size());
-  if (!found) {
-    if (tester.first()) keep_stages(t, std::move(*tester.first()));
-    return fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
+  std::optional<std::shared_ptr<CameraAttempt>> found;
+  std::optional<CameraHypothesisTester> tester;
+  if (planes) {
+    tester.emplace(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
+    found = search_hypotheses<std::shared_ptr<CameraAttempt>>(*planes, BoardVerifier(params.camera_verifier),
+                                                              t.hypotheses, *tester);
+    report.hypotheses = static_cast<int>(t.hypotheses.size());
+    if (!found) {
+      if (tester->first()) keep_stages(t, std::move(*tester->first()));
+      report = fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
+    }
   }
-  const std::shared_ptr<CameraAttempt>& best = *found;
-  report.plane_inliers = best->board.size();
-  report.edge_points = best->edges.edges.size();
-  report.fit_rms = best->circles.rms;
-  report.hole_radius = best->circles.radius;
-  report.centers = best->circles.centers;
-  report.found = true;
-  take_refined_centres(*best, report);
-  keep_stages(t, std::move(*best));
+  if (found) {
+    const std::shared_ptr<CameraAttempt>& best = *found;
+    report.plane_inliers = best->board.size();
+    report.edge_points = best->edges.edges.size();
+    report.fit_rms = best->circles.rms;
+    report.hole_radius = best->circles.radius;
+    report.centers = best->circles.centers;
+    report.found = true;
+    take_refined_centres(*best, report);
+    keep_stages(t, std::move(*best));
+  } else if (target.markers && params.board_from_markers) {
+    std::string why;
+    std::optional<CameraAttempt> marked = board_from_markers(frame, why);
+    if (!marked) {
+      report.reason += "; markers: " + why;
+      return report;
+    }
+    report.found = true;
+    report.failed_stage.clear();
+    report.reason.clear();
+    report.note = "no board in the stereo cloud; its markers gave the pose (" + why + ")";
+    report.hole_radius = target.hole_radius;
+    report.centers = marked->refined ? marked->refined->centers : hole_centres_at(target, marked->T_camera_board);
+    report.rim_rms_px = marked->refined ? marked->refined->rms_px : 0.0;
+    t.T_camera_board_initial = marked->T_camera_board;
+    t.refined = std::move(marked->refined);
+  } else {
+    return report;
+  }
   if (setup.rectifier) {
     const Eigen::Isometry3d T_camera_rect = setup.rectifier->T_rect_camera().inverse();
     for (Eigen::Vector3d& c : report.centers) c = T_camera_rect * c;

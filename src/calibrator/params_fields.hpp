@@ -307,6 +307,7 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("camera_circles", [&](V& s) { visit(s, p.camera_circles); });
   v.section("camera_verifier", [&](V& s) { visit(s, p.camera_verifier); });
   v.field("refine_camera_pose", p.refine_camera_pose);
+  v.field("board_from_markers", p.board_from_markers);
   v.section("board_refiner", [&](V& s) { visit(s, p.board_refiner); });
   v.section("mono", [&](V& s) { visit(s, p.mono); });
   v.section("accumulator", [&](V& s) { visit(s, p.accumulator); });

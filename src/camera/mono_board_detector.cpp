@@ -11,6 +11,7 @@
 
 #include "camera/cv_image.hpp"
 #include "camera/marker_detection.hpp"
+#include "detail/board_frame.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,13 +33,6 @@ std::string ids_text(const std::vector<MonoBoardDetector::Marker>& markers) {
   std::ostringstream text;
   for (std::size_t i = 0; i < markers.size(); ++i) text << (i ? ", " : "") << markers[i].id;
   return text.str();
-}
-
-HoleCenters centres_of(const Target& target, const Eigen::Isometry3d& T_camera_board) {
-  HoleCenters centres{};
-  const auto holes = target.hole_centers();
-  for (std::size_t h = 0; h < 4; ++h) centres[h] = T_camera_board * Eigen::Vector3d(holes[h].x(), holes[h].y(), 0.0);
-  return centres;
 }
 
 /// The marker corners as points for the joint fit with the rims.
@@ -123,7 +117,8 @@ Result MonoBoardDetector::detect(const Image& image) const {
     const BoardPoseRefiner::Result rims = BoardPoseRefiner(params_.rims).refine(
         rectifier_ ? rectified : image, working_, target_, T_working_board, corner_points(working, layout),
         params_.marker_weight);
-    const double shift = largest_shift(centres_of(target_, rims.T_camera_board), centres_of(target_, T_working_board));
+    const double shift = largest_shift(detail::hole_centres_at(target_, rims.T_camera_board),
+                                       detail::hole_centres_at(target_, T_working_board));
     if (!rims.converged) {
       result.note = "rim refinement did not converge (" + rims.reason + "); marker pose kept";
     } else if (shift > params_.max_rim_shift) {
@@ -139,7 +134,7 @@ Result MonoBoardDetector::detect(const Image& image) const {
       rectifier_ ? Eigen::Matrix3d(rectifier_->R_rect_camera().transpose()) : Eigen::Matrix3d::Identity());
   result.T_camera_board_markers = T_camera_working * pose.T_camera_board;
   result.T_camera_board = T_camera_working * T_working_board;
-  result.centers = centres_of(target_, result.T_camera_board);
+  result.centers = detail::hole_centres_at(target_, result.T_camera_board);
   result.found = true;
   return result;
 }

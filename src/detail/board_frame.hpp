@@ -27,4 +27,12 @@ inline Eigen::Isometry3d board_pose_from_centers(const HoleCenters& c, const Pla
   return T_sensor_board;
 }
 
+/// The target's hole centres (front face) where `T_sensor_board` puts its board.
+inline HoleCenters hole_centres_at(const Target& target, const Eigen::Isometry3d& T_sensor_board) {
+  HoleCenters centres{};
+  const auto holes = target.hole_centers();
+  for (std::size_t h = 0; h < 4; ++h) centres[h] = T_sensor_board * Eigen::Vector3d(holes[h].x(), holes[h].y(), 0.0);
+  return centres;
+}
+
 }  // namespace l2s::detail

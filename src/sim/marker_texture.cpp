@@ -28,10 +28,15 @@ MarkerTexture::MarkerTexture(const Target& target) {
 }
 
 int MarkerTexture::cell(const Eigen::Vector2d& xy) const {
+  // A printed marker comes with a white margin (its sheet, or the print's
+  // quiet zone): one cell wide here. Its black border is found by its
+  // contrast against that margin, whatever the face around it looks like.
+  constexpr double kQuietCells = 1.0;
   for (const Marker& m : markers_) {
     const double u = (xy.x() - m.top_left.x()) / m.cell_size;  // columns to the right
     const double v = (m.top_left.y() - xy.y()) / m.cell_size;  // rows downwards
-    if (u < 0.0 || v < 0.0 || u >= m.cells || v >= m.cells) continue;
+    if (u < -kQuietCells || v < -kQuietCells || u >= m.cells + kQuietCells || v >= m.cells + kQuietCells) continue;
+    if (u < 0.0 || v < 0.0 || u >= m.cells || v >= m.cells) return 0;
     const int c = static_cast<int>(std::floor(u)), r = static_cast<int>(std::floor(v));
     return m.black[static_cast<std::size_t>(r) * m.cells + c];
   }

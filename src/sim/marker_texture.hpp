@@ -18,7 +18,8 @@ class MarkerTexture {
   explicit MarkerTexture(const Target& target);
 
   /// At board-frame point `xy` [m] of the front face: -1 off every marker,
-  /// 0 on a white cell, 1 on a black cell (the border included).
+  /// 0 on a white cell or the white margin one cell wide around the marker,
+  /// 1 on a black cell (the border included).
   int cell(const Eigen::Vector2d& xy) const;
 
   bool empty() const { return markers_.empty(); }
