@@ -457,6 +457,11 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
     report.rim_rms_px = marked->refined ? marked->refined->rms_px : 0.0;
     t.T_camera_board_initial = marked->T_camera_board;
     t.refined = std::move(marked->refined);
+    // The stereo search found no board-sized plane in this pair: its
+    // disparity is not one the calibration check may measure depths by
+    // (on a plain wall or through a short baseline it tilted 14-21 deg).
+    t.located.reset();
+    t.stereo.reset();
   } else {
     return report;
   }
