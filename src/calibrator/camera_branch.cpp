@@ -420,14 +420,13 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   const CameraFrame frame{left, right, gray_mat(left, "left"), gray_mat(right, "right"), cameras, target, params};
   const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
   std::optional<std::shared_ptr<CameraAttempt>> found;
-  std::optional<CameraHypothesisTester> tester;
   if (planes) {
-    tester.emplace(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
+    CameraHypothesisTester tester(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
     found = search_hypotheses<std::shared_ptr<CameraAttempt>>(*planes, BoardVerifier(params.camera_verifier),
-                                                              t.hypotheses, *tester);
+                                                              t.hypotheses, tester);
     report.hypotheses = static_cast<int>(t.hypotheses.size());
     if (!found) {
-      if (tester->first()) keep_stages(t, std::move(*tester->first()));
+      if (tester.first()) keep_stages(t, std::move(*tester.first()));
       report = fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
     }
   }

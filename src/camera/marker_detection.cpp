@@ -37,16 +37,22 @@ std::vector<MonoBoardDetector::Marker> find_target_markers(const cv::Mat& gray, 
   return found;
 }
 
+std::optional<std::array<Eigen::Vector3d, 4>> board_corners(const MonoBoardDetector::Marker& marker,
+                                                            const MarkerLayout& layout) {
+  const auto found = std::find(layout.ids.begin(), layout.ids.end(), marker.id);
+  if (found == layout.ids.end()) return std::nullopt;
+  return layout.corners(static_cast<std::size_t>(found - layout.ids.begin()));
+}
+
 MarkerPose pose_from_markers(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
                              const CameraInfo& camera) {
   std::vector<cv::Point3d> board;
   std::vector<cv::Point2d> image;
   for (const auto& marker : markers) {
-    const auto index = static_cast<std::size_t>(
-        std::find(layout.ids.begin(), layout.ids.end(), marker.id) - layout.ids.begin());
-    const auto corners = layout.corners(index);
+    const auto corners = board_corners(marker, layout);
+    if (!corners) continue;
     for (std::size_t c = 0; c < 4; ++c) {
-      board.emplace_back(corners[c].x(), corners[c].y(), corners[c].z());
+      board.emplace_back((*corners)[c].x(), (*corners)[c].y(), (*corners)[c].z());
       image.emplace_back(marker.corners_px[c].x(), marker.corners_px[c].y());
     }
   }

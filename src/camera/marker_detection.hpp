@@ -5,6 +5,8 @@
 
 #include <opencv2/core.hpp>
 
+#include <array>
+#include <optional>
 #include <vector>
 
 namespace l2s::detail {
@@ -13,6 +15,11 @@ namespace l2s::detail {
 /// in the order of layout.ids; ids not in the layout are dropped, and an id
 /// found twice is dropped altogether (which one is the board's is unknown).
 std::vector<MonoBoardDetector::Marker> find_target_markers(const cv::Mat& gray, const MarkerLayout& layout);
+
+/// Where `marker`'s four corners lie on the board (board frame, ArUco
+/// order), or nothing when its id is not one of `layout`'s.
+std::optional<std::array<Eigen::Vector3d, 4>> board_corners(const MonoBoardDetector::Marker& marker,
+                                                            const MarkerLayout& layout);
 
 /// Board pose from marker corners (in pixels of the ideal camera `camera`:
 /// P, no distortion) by PnP over all their corners.

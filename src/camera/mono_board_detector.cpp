@@ -39,12 +39,9 @@ std::string ids_text(const std::vector<MonoBoardDetector::Marker>& markers) {
 std::vector<BoardPoseRefiner::PointObservation> corner_points(const std::vector<MonoBoardDetector::Marker>& markers,
                                                               const MarkerLayout& layout) {
   std::vector<BoardPoseRefiner::PointObservation> points;
-  for (const auto& marker : markers) {
-    const auto index = static_cast<std::size_t>(
-        std::find(layout.ids.begin(), layout.ids.end(), marker.id) - layout.ids.begin());
-    const auto corners = layout.corners(index);
-    for (std::size_t c = 0; c < 4; ++c) points.push_back({corners[c], marker.corners_px[c]});
-  }
+  for (const auto& marker : markers)
+    if (const auto corners = detail::board_corners(marker, layout))
+      for (std::size_t c = 0; c < 4; ++c) points.push_back({(*corners)[c], marker.corners_px[c]});
   return points;
 }
 

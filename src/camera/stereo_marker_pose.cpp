@@ -26,12 +26,9 @@ struct Corner {
 std::vector<Corner> corners_of(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
                                int image) {
   std::vector<Corner> out;
-  for (const auto& marker : markers) {
-    const auto found = std::find(layout.ids.begin(), layout.ids.end(), marker.id);
-    if (found == layout.ids.end()) continue;
-    const auto board = layout.corners(static_cast<std::size_t>(found - layout.ids.begin()));
-    for (std::size_t c = 0; c < 4; ++c) out.push_back({board[c], marker.corners_px[c], image});
-  }
+  for (const auto& marker : markers)
+    if (const auto board = board_corners(marker, layout))
+      for (std::size_t c = 0; c < 4; ++c) out.push_back({(*board)[c], marker.corners_px[c], image});
   return out;
 }
 

@@ -21,7 +21,7 @@ constexpr const char* kGood = "within 2 cm and 0.5 deg";
 constexpr const char* kOff = "beyond 10 cm or 2 deg";
 
 const char* error_class(const SuiteRow& row) {
-  if (row.e_t <= kGoodT && row.e_r <= kGoodR) return kGood;
+  if (within_acceptance(row)) return kGood;
   if (row.e_t > kOffT || row.e_r > kOffR) return kOff;
   return "in between";
 }
@@ -57,6 +57,8 @@ void write_missed_errors(std::ostringstream& out, const std::map<std::string, co
 }
 
 }  // namespace
+
+bool within_acceptance(const SuiteRow& row) { return row.e_t <= kGoodT && row.e_r <= kGoodR; }
 
 void write_check_summary(std::ostringstream& out, const std::vector<SuiteRow>& rows) {
   // Final evaluation of each cell only: a streaming cell's early frames would weigh more.

@@ -5,6 +5,8 @@
 
 #include "suite/suite_scenes_summary.hpp"
 
+#include "suite/suite_check_summary.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -23,7 +25,7 @@ std::string format(const char* pattern, double value) {
 }
 
 /// More than 2 cm or 0.5 deg off: what no use of an overlay tolerates.
-bool wrong(const SuiteRow& row) { return row.success && (row.e_t > 0.02 || row.e_r > 0.5 * M_PI / 180.0); }
+bool wrong(const SuiteRow& row) { return row.success && !within_acceptance(row); }
 
 /// A result the user would take for right and is not: the scene check said
 /// ok, its error lies beyond the 95 % bound it stated, and beyond what any
