@@ -182,6 +182,20 @@ TEST(RandomScene, TheBoardsDrawLeavesTheRestOfTheSceneAsItWas) {
   EXPECT_GT(markers, 0);
 }
 
+// The marked boards the stereo branch's marker pose is measured on: every
+// board carries markers, on a level rig with the lidar upright.
+TEST(RandomScene, MarkedScenesCarryMarkersOnALevelRigWithTheLidarUpright) {
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    const RandomScene marked = make_random_scene(seed, 1, 1.0, 1, BoardDraw::Marked);
+    SCOPED_TRACE(marked.summary);
+    const SimulationConfig& m = marked.simulator->config();
+    ASSERT_TRUE(m.target.markers.has_value());
+    EXPECT_NO_THROW(m.target.validate());
+    EXPECT_EQ(m.rig.roll, 0.0);
+    EXPECT_GT(std::cos(m.setting.roll), 0.0);
+  }
+}
+
 TEST(CameraSceneDraw, ADrawRendersAndItsCamerasRectify) {
   std::mt19937_64 rng(3);
   for (int i = 0; i < 30; ++i) {

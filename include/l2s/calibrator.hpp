@@ -137,11 +137,12 @@ class L2S_EXPORT Calibrator {
     CircleFinder::Params camera_circles;
     BoardVerifier::Params camera_verifier;
     bool refine_camera_pose = true;  ///< fit the board pose to the hole rims in both images
-    /// A target with markers whose board the stereo search does not find (a
-    /// printed face SGM cannot tell from its surroundings): take the pose
-    /// their corners give in both images, refined on the rims, where the
-    /// rims converge and no hole is seen covered (false: the stereo search
-    /// alone, as the paper)
+    /// A target with markers: the pose their corners give in both images,
+    /// refined on the rims where those converge, is the board's first
+    /// hypothesis, kept where no hole is seen covered; where the stereo
+    /// search finds the board elsewhere, the markers win, and the report's
+    /// note says so. It is the only one where SGM cannot tell a printed face
+    /// from its surroundings (false: the stereo search alone, as the paper)
     bool board_from_markers = true;
     BoardPoseRefiner::Params board_refiner;
     // Mono camera (lidar-mono): the board by its ArUco markers, refined with the rims.

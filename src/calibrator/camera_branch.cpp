@@ -345,13 +345,13 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
   }
 }
 
-/// The board from its printed markers, when the stereo search found none (a
-/// printed face SGM cannot tell from its surroundings): the pose their
-/// corners give in both images (stereo_marker_pose.hpp), refined on the hole
-/// rims where those converge (`refined` is reset where they do not: the
-/// texture of a printed face draws the rim search off), and kept only when
-/// no hole is seen blocked by the board's own face. `why` says how, or why
-/// not.
+/// The board from its printed markers, the branch's first hypothesis (and
+/// its only one where SGM cannot tell a printed face from its
+/// surroundings): the pose their corners give in both images
+/// (stereo_marker_pose.hpp), refined on the hole rims where those converge
+/// (`refined` is reset where they do not: the texture of a printed face
+/// draws the rim search off), and kept only when no hole is seen blocked by
+/// the board's own face. `why` says how, or why not.
 std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::string& why) {
   const MarkerLayout& layout = *f.target.markers;
   const auto left = find_target_markers(f.left_gray, layout), right = find_target_markers(f.right_gray, layout);
@@ -395,6 +395,82 @@ std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::strin
   return attempt;
 }
 
+/// The hole centres of a board the stereo search found: on its rims where
+/// their refinement converged, else the stereo circles'.
+HoleCenters stereo_centres(const CameraAttempt& attempt) {
+  return attempt.refined && attempt.refined->converged ? attempt.refined->centers : attempt.circles.centers;
+}
+
+/// The hole centres of a board its markers gave: on its rims where their
+/// refinement converged (board_from_markers keeps no other), else where the
+/// markers' pose puts them.
+HoleCenters marker_centres(const CameraAttempt& attempt, const Target& target) {
+  return attempt.refined ? attempt.refined->centers : hole_centres_at(target, attempt.T_camera_board);
+}
+
+void take_stereo_board(CameraAttempt&& board, BranchReport& report, CameraInspection& t) {
+  report.plane_inliers = board.board.size();
+  report.edge_points = board.edges.edges.size();
+  report.fit_rms = board.circles.rms;
+  report.hole_radius = board.circles.radius;
+  report.centers = board.circles.centers;
+  report.found = true;
+  take_refined_centres(board, report);
+  keep_stages(t, std::move(board));
+}
+
+void take_marker_board(CameraAttempt&& board, const Target& target, BranchReport& report, CameraInspection& t) {
+  report.found = true;
+  report.hole_radius = target.hole_radius;
+  report.centers = marker_centres(board, target);
+  report.rim_rms_px = board.refined ? board.refined->rms_px : 0.0;
+  t.T_camera_board_initial = board.T_camera_board;
+  t.refined = std::move(board.refined);
+}
+
+/// A board the stereo search did not find, or found elsewhere: its pair's
+/// disparity is not one the calibration check may measure the board's depth
+/// by (on a plain wall or through a short baseline it tilted 14-21 deg).
+void drop_stereo_depth(CameraInspection& t) {
+  t.located.reset();
+  t.stereo.reset();
+}
+
+/// Both the markers and the stereo search found a board. Where they put its
+/// holes within half a hole radius of each other they found the same board:
+/// its pose is the markers' unless only the stereo board's rims converged
+/// (a rim fit is sharper than corners), and the pair's depth stays evidence
+/// for the check. Farther apart, the stereo search took something else for
+/// the board (a patch of its face, a pattern one hole off): the markers'
+/// ids tie them to the target, and they win.
+void choose_between(CameraAttempt&& stereo, CameraAttempt&& marked, const std::string& marker_how,
+                    const Target& target, BranchReport& report, CameraInspection& t) {
+  const HoleCenters by_stereo = stereo_centres(stereo), by_markers = marker_centres(marked, target);
+  double apart = 0.0;
+  for (std::size_t h = 0; h < 4; ++h) apart = std::max(apart, (by_stereo[h] - by_markers[h]).norm());
+  std::ostringstream text;
+  text.precision(0);
+  text << std::fixed << "markers (" << marker_how << ") and the stereo board " << (apart * 1e3)
+       << " mm apart at most: ";
+  const bool stereo_rims = stereo.refined && stereo.refined->converged;
+  if (apart <= 0.5 * target.hole_radius && stereo_rims && !marked.refined) {
+    take_stereo_board(std::move(stereo), report, t);
+    report.note = text.str() + "the same board; the stereo board's pose kept, its rims converged";
+    return;
+  }
+  const bool same_board = apart <= 0.5 * target.hole_radius;
+  if (same_board) {
+    take_stereo_board(std::move(stereo), report, t);  // its stages stay what `l2s detect` shows
+  } else {
+    report.plane_inliers = report.edge_points = 0;
+    report.fit_rms = 0.0;
+    drop_stereo_depth(t);
+  }
+  take_marker_board(std::move(marked), target, report, t);
+  report.note = text.str() + (same_board ? "the same board; the markers' pose kept"
+                                         : "not the same board; the markers won, their ids tie them to the target");
+}
+
 }  // namespace
 
 CameraSetup::CameraSetup(const StereoCamera& given) : cameras(given) {
@@ -418,6 +494,11 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   const Image& right = t.rectified ? t.rectified->right : raw_right;
   const StereoCamera& cameras = setup.cameras;
   const CameraFrame frame{left, right, gray_mat(left, "left"), gray_mat(right, "right"), cameras, target, params};
+  // Markers first: their ids tie their corners to the target, so the pose
+  // they give in both images is the board's wherever the images show them.
+  std::optional<CameraAttempt> marked;
+  std::string marker_how;
+  if (target.markers && params.board_from_markers) marked = board_from_markers(frame, marker_how);
   const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
   std::optional<std::shared_ptr<CameraAttempt>> found;
   if (planes) {
@@ -430,38 +511,19 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
       report = fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
     }
   }
-  if (found) {
-    const std::shared_ptr<CameraAttempt>& best = *found;
-    report.plane_inliers = best->board.size();
-    report.edge_points = best->edges.edges.size();
-    report.fit_rms = best->circles.rms;
-    report.hole_radius = best->circles.radius;
-    report.centers = best->circles.centers;
-    report.found = true;
-    take_refined_centres(*best, report);
-    keep_stages(t, std::move(*best));
-  } else if (target.markers && params.board_from_markers) {
-    std::string why;
-    std::optional<CameraAttempt> marked = board_from_markers(frame, why);
-    if (!marked) {
-      report.reason += "; markers: " + why;
-      return report;
-    }
-    report.found = true;
+  if (found && marked) {
+    choose_between(std::move(**found), std::move(*marked), marker_how, target, report, t);
+  } else if (found) {
+    take_stereo_board(std::move(**found), report, t);
+    if (!marker_how.empty()) report.note += (report.note.empty() ? "" : "; ") + ("markers: " + marker_how);
+  } else if (marked) {
     report.failed_stage.clear();
     report.reason.clear();
-    report.note = "no board in the stereo cloud; its markers gave the pose (" + why + ")";
-    report.hole_radius = target.hole_radius;
-    report.centers = marked->refined ? marked->refined->centers : hole_centres_at(target, marked->T_camera_board);
-    report.rim_rms_px = marked->refined ? marked->refined->rms_px : 0.0;
-    t.T_camera_board_initial = marked->T_camera_board;
-    t.refined = std::move(marked->refined);
-    // The stereo search found no board-sized plane in this pair: its
-    // disparity is not one the calibration check may measure depths by
-    // (on a plain wall or through a short baseline it tilted 14-21 deg).
-    t.located.reset();
-    t.stereo.reset();
+    take_marker_board(std::move(*marked), target, report, t);
+    report.note = "no board in the stereo cloud; its markers gave the pose (" + marker_how + ")";
+    drop_stereo_depth(t);
   } else {
+    if (!marker_how.empty()) report.reason += "; markers: " + marker_how;
     return report;
   }
   if (setup.rectifier) {

@@ -58,8 +58,8 @@ void draw_board_geometry(std::mt19937_64& geometry, Target* target) {
   }
 }
 
-void draw_board_markers(std::mt19937_64& markers, Target* target) {
-  if (!chance(markers, 1.0 / 3.0)) return;
+void draw_board_markers(std::mt19937_64& markers, Target* target, double share) {
+  if (!chance(markers, share)) return;
   constexpr std::array<const char*, 8> kDictionaries{"DICT_4X4_50",  "DICT_4X4_100",  "DICT_5X5_100",
                                                      "DICT_5X5_250", "DICT_6X6_250",  "DICT_6X6_1000",
                                                      "DICT_7X7_100", "DICT_ARUCO_ORIGINAL"};

@@ -89,23 +89,26 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
   for (int draw = 0; draw < kMaxDraws; ++draw, ++scene.redraws) {
     std::mt19937_64 rng(detail::hash_counters(seed, kSceneStream, static_cast<std::uint64_t>(draw)));
     CameraSceneDraw camera = draw_camera_scene(rng);
-    if (boards == BoardDraw::All) {
+    const bool any_board = boards != BoardDraw::Classic;
+    if (any_board) {
       std::mt19937_64 face_rng(detail::hash_counters(seed, kFaceStream, static_cast<std::uint64_t>(draw)));
       draw_board_face(face_rng, &camera.appearance);
     }
     LidarSceneDraw lidar = draw_lidar_scene(rng);
-    if (boards == BoardDraw::All) {
+    if (any_board) {
       std::mt19937_64 rig_rng(detail::hash_counters(seed, kRigStream, static_cast<std::uint64_t>(draw)));
       draw_special_rig(rig_rng, &camera.rig);
+    }
+    if (boards == BoardDraw::All) {
       std::mt19937_64 mount_rng(detail::hash_counters(seed, kMountStream, static_cast<std::uint64_t>(draw)));
       draw_mounting(mount_rng, &camera.rig, &lidar.lidar_pose);
     }
     Target board;
-    if (boards == BoardDraw::All) {
+    if (any_board) {
       std::mt19937_64 board_rng(detail::hash_counters(seed, kBoardStream, static_cast<std::uint64_t>(draw)));
       draw_board_geometry(board_rng, &board);
       std::mt19937_64 marker_rng(detail::hash_counters(seed, kMarkerStream, static_cast<std::uint64_t>(draw)));
-      draw_board_markers(marker_rng, &board);
+      draw_board_markers(marker_rng, &board, boards == BoardDraw::Marked ? 1.0 : 1.0 / 3.0);
     }
     const double camera_limit = camera_reach(camera.rig, board.hole_radius);
     if (camera_limit < kNearest) {  // this rig sees no board at a distance the lidar draw allows

@@ -18,6 +18,10 @@ enum class BoardDraw {
   All,
   Classic,  ///< the default board without markers, matte, wood or low-contrast, a level rig of the common
             ///< sizes, an upright lidar: each seed's scene as drawn before the other boards existed
+  /// every face, size and hole layout and rig of All, always with markers,
+  /// the rig level and the lidar upright: what the stereo branch's marker
+  /// pose is measured on
+  Marked,
 };
 
 /// Draws the board's face over `look`: in about half the draws one of the
@@ -32,11 +36,13 @@ L2S_SIM_EXPORT void draw_board_face(std::mt19937_64& faces, Appearance* look);
 /// always a valid target; otherwise the default board.
 L2S_SIM_EXPORT void draw_board_geometry(std::mt19937_64& geometry, Target* target);
 
-/// Draws printed ArUco markers for `target`'s board: in about a third of the
-/// draws four markers near its corners (the default layout where it fits the
-/// board, else one of the board's own), 0.15-0.2 m (smaller where the board
-/// has no room), of one of OpenCV's dictionaries (4x4 to 7x7 bits, and the
-/// original ArUco), with distinct random ids; otherwise none.
-L2S_SIM_EXPORT void draw_board_markers(std::mt19937_64& markers, Target* target);
+/// Draws printed ArUco markers for `target`'s board: in a share `share` of
+/// the draws (about a third by default) four markers near its corners (the
+/// default layout where it fits the board, else one of the board's own),
+/// 0.15-0.2 m (smaller where the board has no room), of one of OpenCV's
+/// dictionaries (4x4 to 7x7 bits, and the original ArUco), with distinct
+/// random ids; otherwise none. The same generator state gives the same
+/// markers whatever `share`, where it gives markers.
+L2S_SIM_EXPORT void draw_board_markers(std::mt19937_64& markers, Target* target, double share = 1.0 / 3.0);
 
 }  // namespace l2s::sim

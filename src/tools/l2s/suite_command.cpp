@@ -77,8 +77,9 @@ sim::SuiteOptions suite_options(const SuiteCommandOptions& o, const GivenOptions
   options.scene_count = o.quick && !given.count ? kQuickScenes : o.scene_count;
   options.scene_frames = o.scene_frames;
   // --quick keeps the scenes its thresholds were measured on: the classic faces.
-  options.scene_boards = (o.quick && !given.scene_boards) || o.scene_boards == "classic" ? sim::BoardDraw::Classic
-                                                                                 : sim::BoardDraw::All;
+  options.scene_boards = o.scene_boards == "marked" ? sim::BoardDraw::Marked
+                         : (o.quick && !given.scene_boards) || o.scene_boards == "classic" ? sim::BoardDraw::Classic
+                                                                                            : sim::BoardDraw::All;
   if (o.preset != "both") options.presets = {o.preset};
   options.repeats = o.quick && !given.repeats ? 1 : o.repeats;
   options.seed = o.seed;
@@ -297,8 +298,9 @@ void add_suite_command(CLI::App& app, Runner& runner) {
                       "boards and mountings of random scenes: all (printed, painted, decorated and glossy faces, "
                       "markers, other sizes and hole layouts; rolled rigs, upside-down lidars, depth-camera, 5 MP "
                       "and long-baseline pairs) or classic (the default board, matte, wood or low-contrast, no "
-                      "markers, a level rig, an upright lidar; --quick's default)")
-      ->check(CLI::IsMember({"all", "classic"}))
+                      "markers, a level rig, an upright lidar; --quick's default) or marked (the boards and rigs of "
+                      "all, always with markers, a level rig, an upright lidar)")
+      ->check(CLI::IsMember({"all", "classic", "marked"}))
       ->capture_default_str();
   command->add_option("--repeats", options->repeats, "repetitions per cell, independent seeds")
       ->check(CLI::Range(1, 10000))
