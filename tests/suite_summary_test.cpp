@@ -87,6 +87,31 @@ TEST(SuiteStats, ScenesSummarySplitsByWhatWasDrawnAndListsTheSilentlyWrong) {
       << summary;
 }
 
+// Stereo beside its left camera alone, scene by scene on marked boards: the
+// scenes where one camera did better than two are listed.
+TEST(SuiteStats, ScenesSummaryWeighsStereoAgainstItsLeftCameraAlone) {
+  std::vector<SuiteRow> rows;
+  for (int scene = 1; scene <= 4; ++scene)
+    for (const char* preset : {"default", "mono"}) {
+      SuiteRow row = sample_row();
+      row.experiment = "scenes";
+      row.setting = scene;
+      row.preset = preset;
+      row.markers = scene < 4 ? "DICT_6X6_250" : "";  // scene 4: no markers, not weighed
+      row.e_t = 0.003;
+      rows.push_back(row);
+    }
+  rows[2].e_t = 0.0045;     // scene 2: stereo 4.5 mm against mono 3 mm
+  rows[4].success = false;  // scene 3: stereo failed, mono calibrated
+  const std::string summary = suite_summary_markdown(rows);
+  EXPECT_NE(summary.find("on the 3 scenes whose board carries markers: both calibrated 2, the stereo result within "
+                         "1 mm of the mono one or nearer the truth in 1 of them; stereo alone 0, mono alone 1."),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("- scene 2 (seed 123456789; ): stereo 4.5 mm, mono 3.0 mm\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- scene 3 (seed 123456789; ): stereo failed, mono 3.0 mm\n"), std::string::npos) << summary;
+}
+
 TEST(SuiteStats, SummaryListsWhyGoodResultsWereNotOkAndWhichOffOnesWere) {
   std::vector<SuiteRow> rows(4, sample_row());
   for (int i = 0; i < 4; ++i) rows[i].setting = i + 1;

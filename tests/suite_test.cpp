@@ -106,6 +106,13 @@ TEST(SuitePlan, RejectsUnknownNames) {
   options.presets = {"fast"};
   EXPECT_THROW(make_suite_plan(options), ParamError);
   EXPECT_THROW(make_suite_plan(options_for("noise", 0)), ParamError);
+  // The left camera alone needs the markers only random scenes draw.
+  options = options_for("noise", 1);
+  options.presets = {"default", "mono"};
+  EXPECT_THROW(make_suite_plan(options), ParamError);
+  options = options_for("scenes", 1);
+  options.presets = {"default", "mono"};
+  EXPECT_NO_THROW(make_suite_plan(options));
 }
 
 TEST(SuiteCsv, LineRoundTripKeepsEveryField) {

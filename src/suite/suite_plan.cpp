@@ -67,9 +67,12 @@ void SuiteOptions::validate() const {
   if (scene_frames < 1 || scene_frames > 10000) throw ParamError("scene_frames", "must be 1..10000");
   for (const auto& experiment : experiments) spec_of(experiment, *this);
   if (presets.empty()) throw ParamError("preset", "at least one preset");
-  for (const auto& preset : presets)
-    if (preset != "default" && preset != "paper")
-      throw ParamError("preset", "unknown preset '" + preset + "' (default or paper)");
+  for (const auto& preset : presets) {
+    if (preset != "default" && preset != "paper" && preset != "mono")
+      throw ParamError("preset", "unknown preset '" + preset + "' (default, paper or mono)");
+    if (preset == "mono" && (experiments.size() != 1 || experiments.front() != "scenes"))
+      throw ParamError("preset", "mono runs on the scenes experiment alone (its boards may carry markers)");
+  }
   if (repeats < 1 || repeats > 10000) throw ParamError("repeats", "must be 1..10000");
 }
 

@@ -106,6 +106,7 @@ double seconds_since(Clock::time_point start) {
 // A cell in progress: its calibrator and the time spent on it so far.
 struct Run {
   const SuiteCell* cell = nullptr;
+  std::string unable;  // why the cell has no calibrator (a mono camera and a board without markers)
   const DatasetSimulator* simulator = nullptr;
   std::optional<Calibrator> calibrator;
   double seconds = 0.0;
@@ -163,17 +164,26 @@ GroupData simulate_group(const SuiteGroup& group, const std::vector<SuiteCell>& 
   return data;
 }
 
-// A calibrator for every cell that has data.
+bool is_mono(const SuiteCell& cell) { return cell.preset == "mono"; }
+
+// A calibrator for every cell that has data: the stereo pair with the cell's
+// preset, or for "mono" the left camera alone with the default preset.
 std::vector<Run> start_runs(const std::vector<SuiteCell>& cells, const GroupData& data) {
   std::vector<Run> runs;
   for (const auto& cell : cells) {
     if (data.failures.count(cell.lidar)) continue;
     const DatasetSimulator& simulator = *data.simulators.at(cell.lidar);
+    const StereoCamera cameras = simulator.cameras();
+    const Target& target = simulator.config().target;
     Run run;
     run.cell = &cell;
     run.simulator = &simulator;
-    run.calibrator.emplace(simulator.cameras(), simulator.config().target,
-                           Calibrator::Params::preset(cell.preset));
+    if (!is_mono(cell))
+      run.calibrator.emplace(cameras, target, Calibrator::Params::preset(cell.preset));
+    else if (target.markers)
+      run.calibrator.emplace(cameras.left, cameras.images, target, Calibrator::Params::preset("default"));
+    else
+      run.unable = "the board carries no markers: one camera alone cannot find it";
     runs.push_back(std::move(run));
   }
   return runs;
@@ -191,11 +201,22 @@ void add_frame(int i, const SuiteGroup& group, const GroupData& data, std::vecto
   // The camera branch once per preset: its parameters are the same for every lidar.
   std::map<std::string, BranchReport> camera;
   for (const Run& run : runs)
-    if (!camera.count(run.cell->preset))
-      camera[run.cell->preset] = run.calibrator->camera_branch(frame.left, frame.right);
+    if (run.calibrator && !camera.count(run.cell->preset))
+      camera[run.cell->preset] = is_mono(*run.cell) ? run.calibrator->camera_branch(frame.left)
+                                                    : run.calibrator->camera_branch(frame.left, frame.right);
 
   const std::string id = std::to_string(i);
   for (Run& run : runs) {
+    if (!run.calibrator) {
+      if (!run.cell->every_frame && i + 1 < group.frames) continue;
+      SuiteRow row = SuiteRow::of(*run.cell);
+      row.scene = data.scene;
+      row.frames = i + 1;
+      row.reason = run.unable;
+      if (group.experiment == "scenes") row = with_scene_draw(std::move(row), run.simulator->config());
+      evaluations[run.cell].push_back(std::move(row));
+      continue;
+    }
     const auto start = Clock::now();
     run.calibrator->add(sweeps.at(run.cell->lidar), camera.at(run.cell->preset), id);
     const bool evaluated = run.cell->every_frame || i + 1 == group.frames;

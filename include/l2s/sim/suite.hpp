@@ -23,7 +23,10 @@ namespace l2s::sim {
 /// experiment (is_pose_experiment).
 struct L2S_SUITE_EXPORT SuiteOptions {
   std::vector<std::string> experiments = {"frames", "noise", "lidars"};
-  std::vector<std::string> presets = {"default", "paper"};  ///< Calibrator presets
+  /// Calibrator presets; "mono" (scenes only) is the default preset on the
+  /// rig's left camera alone, which finds the board by its markers: what a
+  /// stereo result is weighed against, scene by scene.
+  std::vector<std::string> presets = {"default", "paper"};
   int repeats = 3;         ///< repetitions per cell (independent seeds), >= 1
   std::uint64_t seed = 1;  ///< base seed; every cell's seed derives from it
   int scene_count = 20;    ///< scenes of the "scenes" experiment, >= 1
@@ -51,7 +54,7 @@ struct L2S_SUITE_EXPORT SuiteCell {
   std::string lidar;        ///< vlp16 | hdl32 | hdl64 (scenes: "random", the scene draws it)
   double noise_k = 1.0;     ///< noise factor K
   int frames = 30;          ///< frames added
-  std::string preset;       ///< default | paper
+  std::string preset;       ///< default | paper | mono (SuiteOptions::presets)
   int repetition = 0;       ///< 0..repeats-1
   std::uint64_t seed = 0;   ///< simulation seed (SimulationConfig::seed)
   bool every_frame = false; ///< evaluated after each added frame (Fig. 5), else once at the end

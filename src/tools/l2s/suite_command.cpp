@@ -36,7 +36,7 @@ namespace {
 struct SuiteCommandOptions {
   std::string out_dir;
   std::string experiment = "all";
-  std::string preset = "both";
+  std::vector<std::string> presets = {"both"};
   std::string thresholds;
   int repeats = 3;
   int scene_count = 20;
@@ -80,7 +80,12 @@ sim::SuiteOptions suite_options(const SuiteCommandOptions& o, const GivenOptions
   options.scene_boards = o.scene_boards == "marked" ? sim::BoardDraw::Marked
                          : (o.quick && !given.scene_boards) || o.scene_boards == "classic" ? sim::BoardDraw::Classic
                                                                                             : sim::BoardDraw::All;
-  if (o.preset != "both") options.presets = {o.preset};
+  options.presets.clear();
+  for (const std::string& preset : o.presets)
+    for (const char* name : preset == "both" ? std::vector<const char*>{"default", "paper"}
+                                             : std::vector<const char*>{preset.c_str()})
+      if (std::find(options.presets.begin(), options.presets.end(), name) == options.presets.end())
+        options.presets.push_back(name);
   options.repeats = o.quick && !given.repeats ? 1 : o.repeats;
   options.seed = o.seed;
   return options;
@@ -307,8 +312,11 @@ void add_suite_command(CLI::App& app, Runner& runner) {
       ->capture_default_str();
   command->add_option("--jobs", options->jobs, "worker threads over groups of cells (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--preset", options->preset, "calibrator preset(s)")
-      ->check(CLI::IsMember({"default", "paper", "both"}))
+  command->add_option("--preset", options->presets,
+                      "calibrator preset(s), comma-separated: default, paper, both (the two), or mono (scenes: the "
+                      "default preset on the left camera alone, by the board's markers, beside the stereo runs)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"default", "paper", "both", "mono"}))
       ->capture_default_str();
   command->add_flag("--quick", options->quick,
                     "CI smoke test: settings 1, 3, 8 x VLP-16 x K=1 x 10 frames, 1 repetition, and 3 random scenes");
