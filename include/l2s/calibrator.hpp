@@ -54,7 +54,10 @@ struct BranchReport {
   double fit_rms = 0.0;           ///< [m] rms of the circle finder's rim fit (both branches)
   double rim_rms_px = 0.0;        ///< [px] camera: rms of the rim refinement whose centres were kept; 0 when not refined
   double hole_radius = 0.0;       ///< [m] apparent hole radius of the rim fit (real lidars see holes smaller than they are)
-  int markers = 0;                ///< mono camera: the target's ArUco markers found in the image
+  /// The target's ArUco markers found in the (left) image, where their pose
+  /// labelled the holes (mono; stereo: the markers' pose kept, or the stereo
+  /// board's where the two agreed); 0 where the labels come from the image's up.
+  int markers = 0;
   int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
   /// Lidar: the board plane its centres lie on (sensor frame, normal towards

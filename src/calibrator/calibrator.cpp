@@ -73,6 +73,26 @@ struct Calibrator::Impl {
   std::shared_ptr<const CameraObservation> window_camera;
   bool ring_free_lidar = false;  // a frame's sweep had no ring structure
 
+  // Whether `kind` holds for at least half of the frames whose camera found
+  // the board (and for one at least).
+  template <class Kind>
+  bool most_camera_frames(Kind&& kind) const {
+    int found = 0, of_kind = 0;
+    for (const FrameReport& frame : frames) {
+      found += frame.camera.found;
+      of_kind += frame.camera.found && kind(frame.camera);
+    }
+    return of_kind > 0 && 2 * of_kind >= found;
+  }
+
+  // The markers labelled the holes of most camera frames: their ids fix
+  // which hole is which, so the scene check weighs no turned labels (a
+  // symmetric hole pattern seen by a poorly fixed fit can look as good
+  // turned by 180 deg).
+  bool labelled_by_markers() const {
+    return most_camera_frames([](const BranchReport& camera) { return camera.markers > 0; });
+  }
+
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
   // `observe_lidar()` and `observe_camera()` make that of this frame.
@@ -118,6 +138,12 @@ struct Calibrator::Impl {
     const double base = mono ? cameras.left.fx() * target.board_width
                              : -camera_setup->cameras.right.projection_matrix(0, 3);
     detail::SourceRange range{base, params.camera_range_bias_px};
+    // A stereo board posed by its marker corners alone (its rims not
+    // refined) has the corners' disparity, good to about a tenth of a pixel,
+    // not that of a rim fit over hundreds of edge samples.
+    constexpr double kMarkerCornerDisparityPx = 0.1;
+    if (!mono && most_camera_frames([](const BranchReport& c) { return c.markers > 0 && c.rim_rms_px == 0.0; }))
+      range.bias_px = std::max(range.bias_px, kMarkerCornerDisparityPx);
     if (ring_free_lidar) {
       range.extra_translation = detail::kRingFreePoseShare * params.joint.pose_bias_translation;
       range.extra_rotation = detail::kRingFreePoseShare * params.joint.pose_bias_rotation;
@@ -338,7 +364,7 @@ Calibrator::Result Calibrator::result() const {
     result.quality.reasons = {"no transform to check: " + result.reason};
   else if (impl.params.check_result)
     detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params,
-                         impl.camera_range(), impl.mono != nullptr);
+                         impl.camera_range(), impl.mono != nullptr || impl.labelled_by_markers());
   return result;
 }
 

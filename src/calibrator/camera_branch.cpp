@@ -61,7 +61,8 @@ struct CameraAttempt {
   Plane plane;
   EdgeFilter::Result edges;
   CircleFinder::Result circles;
-  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  // from the circles
+  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  // from the circles (or the markers)
+  int markers = 0;  // markers found in the left image, where they gave the pose
   std::optional<BoardPoseRefiner::Result> refined;                    // default preset
 };
 
@@ -372,6 +373,7 @@ std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::strin
   }
   CameraAttempt attempt;
   attempt.T_camera_board = pose.T_camera_board;
+  attempt.markers = static_cast<int>(left.size());
   attempt.refined = BoardPoseRefiner(f.params.board_refiner)
                         .refine(f.left, f.right, f.cameras, f.target, pose.T_camera_board);
   if (attempt.refined->converged) {
@@ -424,6 +426,7 @@ void take_marker_board(CameraAttempt&& board, const Target& target, BranchReport
   report.hole_radius = target.hole_radius;
   report.centers = marker_centres(board, target);
   report.rim_rms_px = board.refined ? board.refined->rms_px : 0.0;
+  report.markers = board.markers;
   t.T_camera_board_initial = board.T_camera_board;
   t.refined = std::move(board.refined);
 }
@@ -455,6 +458,7 @@ void choose_between(CameraAttempt&& stereo, CameraAttempt&& marked, const std::s
   const bool stereo_rims = stereo.refined && stereo.refined->converged;
   if (apart <= 0.5 * target.hole_radius && stereo_rims && !marked.refined) {
     take_stereo_board(std::move(stereo), report, t);
+    report.markers = marked.markers;  // the same holes, labelled alike
     report.note = text.str() + "the same board; the stereo board's pose kept, its rims converged";
     return;
   }

@@ -30,6 +30,7 @@ struct SimulateOptions {
   std::string out_dir;
   std::string scene_file;
   std::optional<std::uint64_t> random_scene;  // a randomised scene of the `scenes` experiment
+  std::string scene_boards = "all";           // ... drawing the boards of `l2s suite --scene-boards`
   std::string target_file;
   std::string board = "default";
   std::string lidar = "vlp16";
@@ -186,8 +187,11 @@ int write_lidar_pair(const sim::SimulationConfig& config, const SimulateOptions&
 int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   const auto given = [&](const char* name) { return command.count(name) > 0; };
   if (options.random_scene) {
+    const sim::BoardDraw boards = options.scene_boards == "classic"  ? sim::BoardDraw::Classic
+                                  : options.scene_boards == "marked" ? sim::BoardDraw::Marked
+                                                                     : sim::BoardDraw::All;
     const sim::RandomScene scene = sim::make_random_scene(*options.random_scene, options.frames, options.noise,
-                                                          options.threads);
+                                                          options.threads, boards);
     std::printf("random scene %llu (%d redraws): %s\n", static_cast<unsigned long long>(scene.seed), scene.redraws,
                 scene.summary.c_str());
     return write_dataset(*scene.simulator, options);
@@ -243,6 +247,11 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
                       "a randomised scene of the suite's `scenes` experiment (any rig, look, lidar and quirks; "
                       "--frames, --noise, --threads apply)")
       ->excludes("--scene");
+  command->add_option("--scene-boards", options->scene_boards,
+                      "the boards --random-scene draws, as `l2s suite --scene-boards`: all, classic or marked")
+      ->check(CLI::IsMember({"all", "classic", "marked"}))
+      ->needs("--random-scene")
+      ->capture_default_str();
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)");
   command->add_flag("--lenient", options->lenient, "warn instead of failing when the placement check fails");
   command->add_flag("--overwrite", options->overwrite, "replace an existing dataset in out_dir");
