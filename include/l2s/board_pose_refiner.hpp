@@ -137,10 +137,20 @@ class L2S_EXPORT BoardPoseRefiner {
                 const Eigen::Isometry3d& T_camera_board, const std::vector<PointObservation>& points = {},
                 double point_weight = 1.0) const;
 
+  /// A rectified pair with points seen in each image (the markers' corners
+  /// in both): one board pose fitted to the rims of both views and to the
+  /// points, each of whose image coordinates weighs as much as
+  /// `point_weight` rim samples (>= 0; ParamError otherwise). The rims of
+  /// small holes hold the board's tilt weakly; corners spread over the
+  /// board hold it.
+  Result refine(const Image& left, const Image& right, const StereoCamera& camera, const Target& target,
+                const Eigen::Isometry3d& T_camera_board, const std::vector<PointObservation>& left_points,
+                const std::vector<PointObservation>& right_points, double point_weight = 1.0) const;
+
  private:
   Result refine_with_anchors(const Image& left, const Image& right, const StereoCamera& camera, const Target& target,
-                             const Eigen::Isometry3d& T_camera_board, const std::vector<PointObservation>& points,
-                             double point_weight) const;
+                             const Eigen::Isometry3d& T_camera_board, const std::vector<PointObservation>& left_points,
+                             const std::vector<PointObservation>& right_points, double point_weight) const;
 
   Params params_;
 };

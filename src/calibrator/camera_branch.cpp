@@ -349,10 +349,12 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
 /// The board from its printed markers, the branch's first hypothesis (and
 /// its only one where SGM cannot tell a printed face from its
 /// surroundings): the pose their corners give in both images
-/// (stereo_marker_pose.hpp), refined on the hole rims where those converge
-/// (`refined` is reset where they do not: the texture of a printed face
-/// draws the rim search off), and kept only when no hole is seen blocked by
-/// the board's own face. `why` says how, or why not.
+/// (stereo_marker_pose.hpp), refined on the hole rims of both images
+/// together with the corners (small holes' rims hold the tilt weakly, the
+/// corners spread over the board hold it) where that converges (`refined`
+/// is reset where it does not: the texture of a printed face draws the rim
+/// search off), and kept only when no hole is seen blocked by the board's
+/// own face. `why` says how, or why not.
 std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::string& why) {
   const MarkerLayout& layout = *f.target.markers;
   const auto left = find_target_markers(f.left_gray, layout), right = find_target_markers(f.right_gray, layout);
@@ -375,7 +377,9 @@ std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::strin
   attempt.T_camera_board = pose.T_camera_board;
   attempt.markers = static_cast<int>(left.size());
   attempt.refined = BoardPoseRefiner(f.params.board_refiner)
-                        .refine(f.left, f.right, f.cameras, f.target, pose.T_camera_board);
+                        .refine(f.left, f.right, f.cameras, f.target, pose.T_camera_board,
+                                corner_observations(left, layout), corner_observations(right, layout),
+                                f.params.mono.marker_weight);
   if (attempt.refined->converged) {
     text << ", refined on the rims";
   } else {

@@ -253,20 +253,33 @@ BoardPoseRefiner::BoardPoseRefiner(Params params) : params_(params) { params_.va
 BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image& right,
                                                   const StereoCamera& camera, const Target& target,
                                                   const Eigen::Isometry3d& T_camera_board) const {
-  return refine_with_anchors(left, right, camera, target, T_camera_board, {}, 0.0);
+  return refine_with_anchors(left, right, camera, target, T_camera_board, {}, {}, 0.0);
+}
+
+BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& left, const Image& right, const StereoCamera& camera,
+                                                  const Target& target, const Eigen::Isometry3d& T_camera_board,
+                                                  const std::vector<PointObservation>& left_points,
+                                                  const std::vector<PointObservation>& right_points,
+                                                  double point_weight) const {
+  if (!(point_weight >= 0.0) || !std::isfinite(point_weight)) throw ParamError("point_weight", "must be >= 0");
+  return refine_with_anchors(left, right, camera, target, T_camera_board, left_points,
+                             params_.use_right_image ? right_points : std::vector<PointObservation>{}, point_weight);
 }
 
 BoardPoseRefiner::Result BoardPoseRefiner::refine_with_anchors(const Image& left, const Image& right,
                                                                const StereoCamera& camera, const Target& target,
                                                                const Eigen::Isometry3d& T_camera_board,
-                                                               const std::vector<PointObservation>& points,
+                                                               const std::vector<PointObservation>& left_points,
+                                                               const std::vector<PointObservation>& right_points,
                                                                double point_weight) const {
   target.validate();
-  // Each anchor point is two samples: its residual along each image axis.
+  // Each anchor point is two samples: its residual along each image axis, in
+  // its view (0 left, 1 right).
   std::vector<Sample> anchors;
-  for (const PointObservation& point : points)
-    for (const Eigen::Vector2d& axis : {Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.0, 1.0)})
-      anchors.push_back({0, point.X_board, axis, point.pixel, point_weight, false});
+  for (const int view : {0, 1})
+    for (const PointObservation& point : view == 0 ? left_points : right_points)
+      for (const Eigen::Vector2d& axis : {Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.0, 1.0)})
+        anchors.push_back({view, point.X_board, axis, point.pixel, point_weight, false});
   detail::check_stereo_images(left, right, camera);
   const cv::Mat gray_left = detail::gray_mat(left, "left");
   const cv::Mat gray_right = detail::gray_mat(right, "right");
@@ -319,7 +332,8 @@ BoardPoseRefiner::Result BoardPoseRefiner::refine(const Image& image, const Came
   one_view.use_right_image = false;
   // The pair's checks see the one image twice; only the left view is fitted.
   return BoardPoseRefiner(one_view).refine_with_anchors(
-      image, image, StereoCamera{camera, camera, ImageKind::Rectified}, target, T_camera_board, points, point_weight);
+      image, image, StereoCamera{camera, camera, ImageKind::Rectified}, target, T_camera_board, points, {},
+      point_weight);
 }
 
 }  // namespace l2s

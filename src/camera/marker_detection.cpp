@@ -44,6 +44,15 @@ std::optional<std::array<Eigen::Vector3d, 4>> board_corners(const MonoBoardDetec
   return layout.corners(static_cast<std::size_t>(found - layout.ids.begin()));
 }
 
+std::vector<BoardPoseRefiner::PointObservation> corner_observations(const std::vector<MonoBoardDetector::Marker>& markers,
+                                                                    const MarkerLayout& layout) {
+  std::vector<BoardPoseRefiner::PointObservation> points;
+  for (const auto& marker : markers)
+    if (const auto corners = board_corners(marker, layout))
+      for (std::size_t c = 0; c < 4; ++c) points.push_back({(*corners)[c], marker.corners_px[c]});
+  return points;
+}
+
 MarkerPose pose_from_markers(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
                              const CameraInfo& camera) {
   std::vector<cv::Point3d> board;

@@ -21,6 +21,11 @@ std::vector<MonoBoardDetector::Marker> find_target_markers(const cv::Mat& gray, 
 std::optional<std::array<Eigen::Vector3d, 4>> board_corners(const MonoBoardDetector::Marker& marker,
                                                             const MarkerLayout& layout);
 
+/// The corners of the markers of `layout` among `markers`, as points the
+/// rim refinement fits together with the rims (board frame and pixel).
+std::vector<BoardPoseRefiner::PointObservation> corner_observations(const std::vector<MonoBoardDetector::Marker>& markers,
+                                                                    const MarkerLayout& layout);
+
 /// Board pose from marker corners (in pixels of the ideal camera `camera`:
 /// P, no distortion) by PnP over all their corners.
 struct MarkerPose {

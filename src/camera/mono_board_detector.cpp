@@ -35,16 +35,6 @@ std::string ids_text(const std::vector<MonoBoardDetector::Marker>& markers) {
   return text.str();
 }
 
-/// The marker corners as points for the joint fit with the rims.
-std::vector<BoardPoseRefiner::PointObservation> corner_points(const std::vector<MonoBoardDetector::Marker>& markers,
-                                                              const MarkerLayout& layout) {
-  std::vector<BoardPoseRefiner::PointObservation> points;
-  for (const auto& marker : markers)
-    if (const auto corners = detail::board_corners(marker, layout))
-      for (std::size_t c = 0; c < 4; ++c) points.push_back({(*corners)[c], marker.corners_px[c]});
-  return points;
-}
-
 double largest_shift(const HoleCenters& a, const HoleCenters& b) {
   double shift = 0.0;
   for (std::size_t h = 0; h < 4; ++h) shift = std::max(shift, (a[h] - b[h]).norm());
@@ -112,7 +102,7 @@ Result MonoBoardDetector::detect(const Image& image) const {
   if (params_.refine_with_rims) {
     const Image rectified = rectifier_ ? rectifier_->rectify(image) : Image{};
     const BoardPoseRefiner::Result rims = BoardPoseRefiner(params_.rims).refine(
-        rectifier_ ? rectified : image, working_, target_, T_working_board, corner_points(working, layout),
+        rectifier_ ? rectified : image, working_, target_, T_working_board, detail::corner_observations(working, layout),
         params_.marker_weight);
     const double shift = largest_shift(detail::hole_centres_at(target_, rims.T_camera_board),
                                        detail::hole_centres_at(target_, T_working_board));
