@@ -66,12 +66,28 @@ const l2s::sim::DatasetSimulator& wall_strips_simulator() {
   return sim;
 }
 
+/// Setting 1, seed 11, the board carrying the default markers.
+const l2s::sim::DatasetSimulator& marked_simulator() {
+  static const l2s::sim::DatasetSimulator sim = [] {
+    auto config = l2s::sim::SimulationConfig::paper(1, "vlp16");
+    config.frames = 1;
+    config.seed = 11;
+    config.target = l2s::Target::with_default_markers();
+    return l2s::sim::DatasetSimulator(config);
+  }();
+  return sim;
+}
+
 /// The camera branch of the default preset on one 1280x960 pair (locate the
 /// board at low resolution, match its region, verify, refine). Arg 0: setting
 /// 1, seed 11 (the other planes are pieces of the board); arg 1: setting 2,
-/// seed 5 (pieces of the wall behind it, far less board-like).
+/// seed 5 (pieces of the wall behind it, far less board-like); arg 2: arg 0's
+/// scene with a marked board (the markers' pose first, the stereo search
+/// beside it).
 void BM_CameraBranch_1280x960(benchmark::State& state) {
-  const auto& sim = state.range(0) == 0 ? simulator(16, 1) : wall_strips_simulator();
+  const auto& sim = state.range(0) == 0   ? simulator(16, 1)
+                    : state.range(0) == 1 ? wall_strips_simulator()
+                                          : marked_simulator();
   const auto frame = sim.frame(0);
   const l2s::Calibrator calibrator(sim.cameras(), sim.config().target);
   double stereo_ms = 0.0;
@@ -82,7 +98,7 @@ void BM_CameraBranch_1280x960(benchmark::State& state) {
   }
   state.counters["branch_ms"] = stereo_ms / state.iterations();
 }
-BENCHMARK(BM_CameraBranch_1280x960)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CameraBranch_1280x960)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// The camera branch's first step alone (default preset): the coarse stereo
 /// pass and the plane segmentation of its cloud into board regions. Args as
