@@ -85,14 +85,6 @@ struct Calibrator::Impl {
     return of_kind > 0 && 2 * of_kind >= found;
   }
 
-  // The markers labelled the holes of most camera frames: their ids fix
-  // which hole is which, so the scene check weighs no turned labels (a
-  // symmetric hole pattern seen by a poorly fixed fit can look as good
-  // turned by 180 deg).
-  bool labelled_by_markers() const {
-    return most_camera_frames([](const BranchReport& camera) { return camera.markers > 0; });
-  }
-
   // Names the frame, accumulates what its branches found, keeps its report,
   // and (for the frames the check keeps) what the check needs of it:
   // `observe_lidar()` and `observe_camera()` make that of this frame.
@@ -363,8 +355,13 @@ Calibrator::Result Calibrator::result() const {
   if (!result.found)
     result.quality.reasons = {"no transform to check: " + result.reason};
   else if (impl.params.check_result)
+    // A stereo pair's markers label the camera's holes, not the lidar's: a
+    // lidar mounted upside down labels its own turned by 180 deg, so the
+    // check still weighs turned labels there (with the markers' labels
+    // fixed, a marked board seen by an upside-down lidar came out 893 mm /
+    // 180 deg off and `ok`).
     detail::check_result(result, impl.check_frames.frames(), impl.cameras, impl.target, impl.params,
-                         impl.camera_range(), impl.mono != nullptr || impl.labelled_by_markers());
+                         impl.camera_range(), impl.mono != nullptr);
   return result;
 }
 
