@@ -73,16 +73,15 @@ struct Calibrator::Impl {
   std::shared_ptr<const CameraObservation> window_camera;
   bool ring_free_lidar = false;  // a frame's sweep had no ring structure
 
-  // Whether `kind` holds for at least half of the frames whose camera found
-  // the board (and for one at least).
-  template <class Kind>
-  bool most_camera_frames(Kind&& kind) const {
-    int found = 0, of_kind = 0;
+  // Whether at least half of the frames whose camera found the board (and
+  // one at least) found it by its marker corners alone, the rims not refined.
+  bool mostly_posed_by_marker_corners() const {
+    int found = 0, by_corners = 0;
     for (const FrameReport& frame : frames) {
       found += frame.camera.found;
-      of_kind += frame.camera.found && kind(frame.camera);
+      by_corners += frame.camera.found && frame.camera.markers > 0 && frame.camera.rim_rms_px == 0.0;
     }
-    return of_kind > 0 && 2 * of_kind >= found;
+    return by_corners > 0 && 2 * by_corners >= found;
   }
 
   // Names the frame, accumulates what its branches found, keeps its report,
@@ -134,7 +133,7 @@ struct Calibrator::Impl {
     // refined) has the corners' disparity, good to about a tenth of a pixel,
     // not that of a rim fit over hundreds of edge samples.
     constexpr double kMarkerCornerDisparityPx = 0.1;
-    if (!mono && most_camera_frames([](const BranchReport& c) { return c.markers > 0 && c.rim_rms_px == 0.0; }))
+    if (!mono && mostly_posed_by_marker_corners())
       range.bias_px = std::max(range.bias_px, kMarkerCornerDisparityPx);
     if (ring_free_lidar) {
       range.extra_translation = detail::kRingFreePoseShare * params.joint.pose_bias_translation;

@@ -1,9 +1,8 @@
 #include "calibrator/branches.hpp"
+#include "calibrator/camera_attempt.hpp"
 
 #include "camera/cv_image.hpp"
-#include "camera/marker_detection.hpp"
 #include "camera/stereo_cloud_subset.hpp"
-#include "camera/stereo_marker_pose.hpp"
 #include "detail/board_frame.hpp"
 #include "plane/plane_fit.hpp"
 #include "verify/hypothesis_search.hpp"
@@ -52,29 +51,6 @@ StereoCloud board_points(const StereoCloud& cloud, double band, double depth_noi
   }
   return subset(cloud, near);
 }
-
-/// The stages run on one board hypothesis.
-struct CameraAttempt {
-  int candidate = -1;
-  std::optional<StereoMatcher::Result> stereo;  // the region's full-resolution pass (located only)
-  StereoCloud board;
-  Plane plane;
-  EdgeFilter::Result edges;
-  CircleFinder::Result circles;
-  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  // from the circles (or the markers)
-  int markers = 0;  // markers found in the left image, where they gave the pose
-  std::optional<BoardPoseRefiner::Result> refined;                    // default preset
-};
-
-/// The frame-wide data every hypothesis of one pair is tested against.
-struct CameraFrame {
-  const Image& left;
-  const Image& right;
-  cv::Mat left_gray, right_gray;
-  const StereoCamera& cameras;
-  const Target& target;
-  const Calibrator::Params& params;
-};
 
 /// Board points, edges, circles and the images' evidence for one hypothesis:
 /// with a located board, from a full-resolution pass over its region; else
@@ -346,61 +322,6 @@ void take_refined_centres(const CameraAttempt& attempt, BranchReport& report) {
   }
 }
 
-/// The board from its printed markers, the branch's first hypothesis (and
-/// its only one where SGM cannot tell a printed face from its
-/// surroundings): the pose their corners give in both images
-/// (stereo_marker_pose.hpp), refined on the hole rims of both images
-/// together with the corners (small holes' rims hold the tilt weakly, the
-/// corners spread over the board hold it) where that converges (`refined`
-/// is reset where it does not: the texture of a printed face draws the rim
-/// search off), and kept only when no hole is seen blocked by the board's
-/// own face. `why` says how, or why not.
-std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::string& why) {
-  const MarkerLayout& layout = *f.target.markers;
-  const auto left = find_target_markers(f.left_gray, layout), right = find_target_markers(f.right_gray, layout);
-  const StereoMarkerPose pose = stereo_pose_from_markers(left, right, layout, f.cameras);
-  std::ostringstream text;
-  text << left.size() << " of the target's " << layout.ids.size() << " markers in the left image, " << right.size()
-       << " in the right";
-  if (!pose.found) {
-    why = text.str() + ": no board pose facing the camera";
-    return std::nullopt;
-  }
-  const double rms = std::max(pose.rms_left_px, pose.rms_right_px);
-  if (rms > f.params.mono.max_marker_rms_px) {
-    text.precision(2);
-    text << ": their corners fit one board pose only to " << std::fixed << rms << " px";
-    why = text.str();
-    return std::nullopt;
-  }
-  CameraAttempt attempt;
-  attempt.T_camera_board = pose.T_camera_board;
-  attempt.markers = static_cast<int>(left.size());
-  attempt.refined = BoardPoseRefiner(f.params.board_refiner)
-                        .refine(f.left, f.right, f.cameras, f.target, pose.T_camera_board,
-                                corner_observations(left, layout), corner_observations(right, layout),
-                                f.params.mono.marker_weight);
-  if (attempt.refined->converged) {
-    text << ", refined on the rims";
-  } else {
-    text << "; the rims did not converge there (" << attempt.refined->reason << "): the markers' pose kept";
-    attempt.refined.reset();
-  }
-  const Eigen::Isometry3d& T = attempt.refined ? attempt.refined->T_camera_board : attempt.T_camera_board;
-  StereoEvidenceParams evidence_params;
-  evidence_params.max_depth = f.params.stereo.max_depth;
-  const BoardEvidence evidence =
-      stereo_evidence(f.left_gray, f.right_gray, f.cameras, T, f.target, f.params.camera_verifier, evidence_params);
-  for (int h = 0; h < 4; ++h)
-    if (evidence.hole_blocked[h] >= f.params.camera_verifier.min_samples &&
-        evidence.hole_blocked[h] > evidence.hole_open[h]) {
-      why = text.str() + "; the images show hole " + std::to_string(h) + " covered where their pose puts it";
-      return std::nullopt;
-    }
-  why = text.str();
-  return attempt;
-}
-
 /// The hole centres of a board the stereo search found: on its rims where
 /// their refinement converged, else the stereo circles'.
 HoleCenters stereo_centres(const CameraAttempt& attempt) {
@@ -459,20 +380,17 @@ void choose_between(CameraAttempt&& stereo, CameraAttempt&& marked, const std::s
   text.precision(0);
   text << std::fixed << "markers (" << marker_how << ") and the stereo board " << (apart * 1e3)
        << " mm apart at most: ";
-  const bool stereo_rims = stereo.refined && stereo.refined->converged;
-  if (apart <= 0.5 * target.hole_radius && stereo_rims && !marked.refined) {
+  // The same board: the stereo stages stay what `l2s detect` shows.
+  const bool same_board = apart <= 0.5 * target.hole_radius;
+  const bool stereo_pose = same_board && stereo.refined && stereo.refined->converged && !marked.refined;
+  if (same_board)
     take_stereo_board(std::move(stereo), report, t);
+  else
+    drop_stereo_depth(t);
+  if (stereo_pose) {
     report.markers = marked.markers;  // the same holes, labelled alike
     report.note = text.str() + "the same board; the stereo board's pose kept, its rims converged";
     return;
-  }
-  const bool same_board = apart <= 0.5 * target.hole_radius;
-  if (same_board) {
-    take_stereo_board(std::move(stereo), report, t);  // its stages stay what `l2s detect` shows
-  } else {
-    report.plane_inliers = report.edge_points = 0;
-    report.fit_rms = 0.0;
-    drop_stereo_depth(t);
   }
   take_marker_board(std::move(marked), target, report, t);
   report.note = text.str() + (same_board ? "the same board; the markers' pose kept"
