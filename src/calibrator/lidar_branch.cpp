@@ -159,8 +159,11 @@ BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Cal
   report.input_points = cloud.size();
   if (cloud.size() < 3)
     return fail(report, "pass_through", "no finite points inside the pass-through limits");
-  // Rings are recovered after filtering: the board's rings are what matters, and
-  // fewer points cluster faster. A cloud without a ring structure is ring-free.
+  // A ring field that does not give the scan lines (a solid-state lidar's
+  // line number, a constant) is dropped: the returns decide. Rings are
+  // recovered after filtering: the board's rings are what matters, and fewer
+  // points cluster faster. A cloud without a ring structure is ring-free.
+  if (cloud.has_ring() && !io::check_ring_field(cloud).usable) cloud.ring.clear();
   if (!cloud.has_ring()) {
     t.ring_free = known_ring_free || io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
     if (!t.ring_free) io::recover_rings(cloud);
@@ -223,7 +226,8 @@ BranchReport run_ring_free_branch(const LidarCloud& window, const Target& target
 
 bool is_ring_free(const LidarCloud& sweep) {
   // Bad input goes the ordinary way, whose report names the problem.
-  if (sweep.has_ring() || sweep.size() < 3) return false;
+  if (sweep.size() < 3) return false;
+  if (sweep.has_ring() && sweep.ring.size() != sweep.size()) return false;
   if (sweep.has_intensity() && sweep.intensity.size() != sweep.size()) return false;
   return io::classify_scan(sweep).structure == io::ScanStructure::RingFree;
 }

@@ -114,8 +114,22 @@ L2S_EXPORT int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params
 L2S_EXPORT RingRecoveryReport rings_from_rows(LidarCloud& cloud, std::size_t height,
                                    const RingRecoveryParams& params = {});
 
+/// Whether a sweep's ring field gives its scan lines: each value one laser,
+/// its returns on one line of the laser model, successive values on
+/// successive lines (numbered from the bottom or from the top). Drivers also
+/// write fields that are not: a solid-state lidar's line or head number (each
+/// spans the field of view), a packet counter, a constant. Such a field is
+/// not `usable`, and `reason` says why; a cloud without a field (or with
+/// too few returns to judge) passes.
+struct RingFieldCheck {
+  bool usable = true;
+  std::string reason;
+};
+L2S_EXPORT RingFieldCheck check_ring_field(const LidarCloud& cloud);
+
 /// Whether a sweep needs the ring path or the ring-free one, and why. A sweep
-/// with a ring field is Rings; otherwise its rings are recovered (on a copy).
+/// with a usable ring field (check_ring_field) is Rings; otherwise its rings
+/// are recovered from the returns (on a copy).
 struct ScanClassification {
   ScanStructure structure = ScanStructure::Rings;
   std::string reason;

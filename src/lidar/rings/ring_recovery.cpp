@@ -134,11 +134,16 @@ int recover_rings(LidarCloud& cloud, const RingRecoveryParams& params) {
 }
 
 ScanClassification classify_scan(const LidarCloud& cloud, const RingRecoveryParams& params) {
-  if (cloud.has_ring()) return {ScanStructure::Rings, "the sweep has a ring field"};
+  std::string field;
+  if (cloud.has_ring()) {
+    const RingFieldCheck check = check_ring_field(cloud);
+    if (check.usable) return {ScanStructure::Rings, "the sweep's ring field gives its scan lines"};
+    field = "ring field ignored (" + check.reason + "); ";
+  }
   LidarCloud copy;
   copy.points = cloud.points;
   const RingRecoveryReport report = recover_ring_structure(copy, params);
-  return {report.structure, report.structure_reason};
+  return {report.structure, field + report.structure_reason};
 }
 
 }  // namespace l2s::io

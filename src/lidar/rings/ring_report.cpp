@@ -21,6 +21,11 @@ constexpr double kOverlapContrast = 5.0;   // two lasers barely told apart: ~5; 
 constexpr int kMostRings = 256;            // no spinning lidar has more lasers
 constexpr std::size_t kReturnsPerRing = 10;  // fewer per ring: too many rings
 constexpr std::size_t kManyReturns = 1000;   // enough returns to expect several rings
+// One sweep of a spinning lidar puts a few thousand returns on a laser (0.1
+// deg steps over 360 deg: 3600): one or two lines for this many returns are
+// an accumulated or solid-state cloud, e.g. a board leaning back and cropped,
+// whose returns all fit one laser model z = d tan(e) + h.
+constexpr std::size_t kAccumulatedReturns = 10000;
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char text[160];
@@ -48,6 +53,14 @@ void decide_structure(RingRecoveryReport& report) {
         "returns spread %.1f deg (rms, median of %.0f fitted lines) around each line: no scan "
         "lines",
         widths[widths.size() / 2] * kDeg, static_cast<double>(lasers));
+    return;
+  }
+  if (lasers <= 2 && report.points >= kAccumulatedReturns) {
+    report.structure = ScanStructure::RingFree;
+    report.structure_reason = format(
+        "only %.0f line(s) for %.0f returns, where one sweep of a spinning lidar puts a few thousand on "
+        "each laser: no scan lines",
+        static_cast<double>(lasers), static_cast<double>(report.points));
     return;
   }
   if (lasers > 1 && report.contrast < kRingFreeContrast) {
