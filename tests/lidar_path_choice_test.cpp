@@ -137,5 +137,38 @@ TEST(LidarPathChoice, ASpinningLidarWithAFieldInFiringOrderHasItsRingsFromItsRet
   EXPECT_NE(scan.reason.find("ring field ignored"), std::string::npos) << scan.reason;
 }
 
+TEST(LidarPathChoice, EitherPathCanBeForced) {
+  const LeaningBoard board(40000);
+  const LidarCloud sweep = vlp16_sweep();
+  auto params = Calibrator::Params::preset("default");
+  EXPECT_TRUE(lidar_path(board.cloud, params).ring_free);
+  EXPECT_FALSE(lidar_path(sweep, params).ring_free);
+
+  params.lidar_scan = Calibrator::LidarScan::RingFree;
+  const LidarPath forced = lidar_path(sweep, params);
+  EXPECT_TRUE(forced.ring_free);
+  EXPECT_NE(forced.reason.find("as lidar_scan forces"), std::string::npos) << forced.reason;
+  const LidarInspection ring_free = inspect_lidar(sweep, board.target, params);
+  EXPECT_TRUE(ring_free.ring_free);
+  EXPECT_FALSE(ring_free.cloud.has_ring());
+
+  params.lidar_scan = Calibrator::LidarScan::Rings;
+  EXPECT_FALSE(lidar_path(board.cloud, params).ring_free);
+  const LidarInspection rings = inspect_lidar(board.cloud, board.target, params);
+  EXPECT_FALSE(rings.ring_free);
+  EXPECT_EQ(rings.cloud.ring.size(), rings.cloud.size());  // recovered from the returns
+}
+
+TEST(LidarPathChoice, TheInspectionSaysWhichPathAndWhy) {
+  const LeaningBoard board(40000);
+  LidarCloud cloud = board.cloud;
+  cloud.ring.assign(cloud.size(), 3);
+  const auto params = Calibrator::Params::preset("default");
+  const LidarInspection in = inspect_lidar(cloud, board.target, params);
+  EXPECT_NE(in.path.find("ring-free"), std::string::npos) << in.path;
+  EXPECT_NE(in.path.find("ring field ignored"), std::string::npos) << in.path;
+  EXPECT_NE(describe(in, params).find("path             ring-free"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace l2s

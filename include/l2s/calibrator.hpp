@@ -118,6 +118,12 @@ class L2S_EXPORT Calibrator {
  public:
   /// Every stage's parameters in one place (loaded from / saved to YAML by
   /// io::load_calibrator_params / io::save_calibrator_params).
+  /// Which path a lidar sweep takes. Auto: its returns decide
+  /// (io::classify_scan): a ring field that gives the scan lines, or lines
+  /// recovered from the elevations, go the ring way; a scan without lines
+  /// (solid-state, accumulated) the ring-free way. Rings or RingFree force one.
+  enum class LidarScan { Auto, Rings, RingFree };
+
   struct Params {
     /// The "default" preset: Params{} and preset("default") are the same.
     Params();
@@ -127,6 +133,7 @@ class L2S_EXPORT Calibrator {
     PlaneSegmenter::Params lidar_plane = PlaneSegmenter::Params::lidar();
     DiscontinuityFilter::Params discontinuity;
     OccupancyEdgeFilter::Params occupancy;  ///< hole edges of ring-free (accumulated) clouds
+    LidarScan lidar_scan = LidarScan::Auto;  ///< the lidar path: auto (the returns decide), rings or ring_free (forced)
     int ring_free_frames = 20;  ///< ring-free lidars: sweeps of the static board accumulated into one detection (2 s at 10 Hz); a window without the board grows, detected again every ring_free_frames / 2 more, up to twice this (a sparse scan), >= 1
     CircleFinder::Params lidar_circles;
     BoardVerifier::Params lidar_verifier;  ///< which board-sized plane is the board (holes seen through, outline clear)

@@ -19,6 +19,7 @@ struct LidarInspection {
   BranchReport report;  ///< what Calibrator::add reports for this sweep
   std::optional<PassThroughFilter::Result> pass_through;  ///< indices into the input sweep
   bool ring_free = false;  ///< no ring structure: hole edges from the board's occupancy, not ring discontinuities
+  std::string path;        ///< why this path, in words (lidar_path)
   LidarCloud cloud;  ///< the sweep after pass-through, rings filled (ring-free: none): what the later stages index
   std::optional<PlaneSegmenter::Result> plane;  ///< every candidate; inliers index `cloud`
   std::vector<BoardHypothesis> hypotheses;       ///< board-sized planes tried, in order, and their fate
@@ -64,6 +65,15 @@ struct CameraInspection {
   std::optional<Eigen::Isometry3d> T_camera_board_initial;  ///< pose from the circles, refiner's start
   std::optional<BoardPoseRefiner::Result> refined;          ///< only when params.refine_camera_pose
 };
+
+/// The lidar path a sweep takes in the Calibrator, and why in words:
+/// params.lidar_scan when it forces one, else the sweep's returns decide
+/// (a usable ring field, or scan lines recovered from its elevations).
+struct LidarPath {
+  bool ring_free = false;
+  std::string reason;
+};
+L2S_EXPORT LidarPath lidar_path(const LidarCloud& sweep, const Calibrator::Params& params);
 
 /// Runs the lidar branch on one sweep and keeps every stage's result.
 /// Throws ParamError for invalid params or target (as the Calibrator does).

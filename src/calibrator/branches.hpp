@@ -11,6 +11,7 @@
 #include <l2s/stereo_rectifier.hpp>
 
 #include <memory>
+#include <string>
 
 namespace l2s::detail {
 
@@ -27,10 +28,19 @@ BranchReport run_lidar_branch(const LidarCloud& sweep, const Target& target,
 BranchReport run_ring_free_branch(const LidarCloud& window, const Target& target,
                                   const Calibrator::Params& params, LidarInspection* trace = nullptr);
 
-/// Does this sweep lack a usable ring structure (no ring field, and none to
-/// recover from its elevations)? Such sweeps are accumulated, then detected
-/// as one ring-free cloud.
-bool is_ring_free(const LidarCloud& sweep);
+/// The path of a sweep (l2s::lidar_path): ring-free or not, whether its ring
+/// field is used (else rings are recovered from the returns), and why.
+struct SweepPath {
+  bool ring_free = false;
+  bool use_field = false;
+  std::string reason;
+};
+SweepPath choose_path(const LidarCloud& sweep, const Calibrator::Params& params);
+
+/// Does this sweep go the ring-free way (choose_path)? Such sweeps are
+/// accumulated, then detected as one ring-free cloud. Bad input (fields of
+/// the wrong length) goes the ring way, whose report names the fault.
+bool is_ring_free(const LidarCloud& sweep, const Calibrator::Params& params);
 
 /// The sweeps of a static board as one ring-free cloud: each sweep's points
 /// inside the lidar pass-through (ring and intensity dropped).

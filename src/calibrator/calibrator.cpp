@@ -228,7 +228,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Im
   // either way); the check observes the frames it keeps from them.
   LidarInspection lidar_trace;
   CameraInspection camera_trace;
-  const bool ring_free = detail::is_ring_free(lidar);
+  const bool ring_free = detail::is_ring_free(lidar, impl.params);
   const auto lidar_branch = [&] { return impl.lidar.detect(lidar, ring_free, &lidar_trace); };
   const auto camera_branch = [&] {
     return timed([&] {
@@ -299,7 +299,7 @@ FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const st
   if (impl.params.parallel_branches) camera = std::async(std::launch::async, camera_branch);
   LidarInspection lidar_trace;
   FrameReport report;
-  const bool ring_free = detail::is_ring_free(lidar);
+  const bool ring_free = detail::is_ring_free(lidar, impl.params);
   report.lidar = impl.lidar.detect(lidar, ring_free, &lidar_trace);
   report.camera = camera.valid() ? camera.get() : camera_branch();
   // The check sees the left image's edges and the markers' board pose (no
@@ -324,7 +324,7 @@ bool Calibrator::mono() const { return impl_->mono != nullptr; }
 FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
   FrameReport report;
   LidarInspection lidar_trace;
-  const bool ring_free = detail::is_ring_free(lidar);
+  const bool ring_free = detail::is_ring_free(lidar, impl_->params);
   report.lidar = impl_->lidar.detect(lidar, ring_free, &lidar_trace);
   report.camera = camera;
   report.milliseconds = report.lidar.milliseconds + camera.milliseconds;

@@ -327,6 +327,7 @@ CameraInspection inspect_camera(const Image& left, const Image& right, const Ste
 std::string describe(const LidarInspection& in, const Calibrator::Params& params) {
   std::string out;
   describe_status(out, "lidar", in.report);
+  if (!in.path.empty()) append(out, "  path             %s [lidar_scan]\n", in.path.c_str());
   const std::size_t input =
       in.pass_through ? in.pass_through->kept.size() + in.pass_through->dropped_non_finite +
                             in.pass_through->dropped_box + in.pass_through->dropped_range

@@ -159,14 +159,20 @@ BranchReport run_branch(const LidarCloud& sweep, const Target& target, const Cal
   report.input_points = cloud.size();
   if (cloud.size() < 3)
     return fail(report, "pass_through", "no finite points inside the pass-through limits");
-  // A ring field that does not give the scan lines (a solid-state lidar's
-  // line number, a constant) is dropped: the returns decide. Rings are
-  // recovered after filtering: the board's rings are what matters, and fewer
-  // points cluster faster. A cloud without a ring structure is ring-free.
-  if (cloud.has_ring() && !io::check_ring_field(cloud).usable) cloud.ring.clear();
-  if (!cloud.has_ring()) {
-    t.ring_free = known_ring_free || io::classify_scan(cloud).structure == io::ScanStructure::RingFree;
-    if (!t.ring_free) io::recover_rings(cloud);
+  // The path is chosen after filtering: the board's rings are what matters,
+  // and fewer points cluster faster. A ring field that does not give the
+  // scan lines (a solid-state lidar's line number, a constant) is dropped and
+  // the rings, if any, are recovered from the returns.
+  if (known_ring_free) {
+    t.ring_free = true;
+    t.path = "ring-free: the sweeps of a window accumulated";
+    cloud.ring.clear();
+  } else {
+    const SweepPath path = choose_path(cloud, params);
+    t.ring_free = path.ring_free;
+    t.path = path.reason;
+    if (!path.use_field) cloud.ring.clear();
+    if (!t.ring_free && !cloud.has_ring()) io::recover_rings(cloud);
   }
 
   const PlaneSegmenter::Params plane_search = plane_params(params, t.ring_free, target);
@@ -224,12 +230,11 @@ BranchReport run_ring_free_branch(const LidarCloud& window, const Target& target
   return run_branch(window, target, params, trace, true);
 }
 
-bool is_ring_free(const LidarCloud& sweep) {
-  // Bad input goes the ordinary way, whose report names the problem.
+bool is_ring_free(const LidarCloud& sweep, const Calibrator::Params& params) {
   if (sweep.size() < 3) return false;
   if (sweep.has_ring() && sweep.ring.size() != sweep.size()) return false;
   if (sweep.has_intensity() && sweep.intensity.size() != sweep.size()) return false;
-  return io::classify_scan(sweep).structure == io::ScanStructure::RingFree;
+  return choose_path(sweep, params).ring_free;
 }
 
 LidarCloud accumulate_ring_free(const std::vector<const LidarCloud*>& sweeps, const Calibrator::Params& params) {

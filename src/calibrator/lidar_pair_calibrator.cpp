@@ -261,7 +261,7 @@ LidarPairFrameReport LidarPairCalibrator::add(const LidarCloud& lidar, const Lid
   LidarPairFrameReport report;
   report.id = id.empty() ? std::to_string(impl.frames.size()) : id;
   const LidarCloud* sweeps[2] = {&lidar, &lidar2};
-  const bool ring_free[2] = {detail::is_ring_free(lidar), detail::is_ring_free(lidar2)};
+  const bool ring_free[2] = {detail::is_ring_free(lidar, impl.params), detail::is_ring_free(lidar2, impl.params)};
   for (int s = 0; s < 2; ++s) impl.ring_free_seen[s] = impl.ring_free_seen[s] || ring_free[s];
   LidarInspection traces[2];  // for the board planes (the branch keeps its stages there either way)
   BranchReport found[2];

@@ -295,6 +295,8 @@ void visit(V& v, Calibrator::Params& p) {
   v.section("lidar_plane", [&](V& s) { visit(s, p.lidar_plane); });
   v.section("discontinuity", [&](V& s) { visit(s, p.discontinuity); });
   v.section("occupancy", [&](V& s) { visit(s, p.occupancy); });
+  using S = Calibrator::LidarScan;
+  v.choice("lidar_scan", p.lidar_scan, {{S::Auto, "auto"}, {S::Rings, "rings"}, {S::RingFree, "ring_free"}});
   v.field("ring_free_frames", p.ring_free_frames);
   v.section("lidar_circles", [&](V& s) { visit(s, p.lidar_circles); });
   v.section("lidar_verifier", [&](V& s) { visit(s, p.lidar_verifier); });

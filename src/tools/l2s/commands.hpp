@@ -44,5 +44,10 @@ int calibrate_lidar_pair(const io::Dataset& dataset, const LidarPairRun& run);
 io::Dataset open_dataset_warning(const std::string& folder);
 /// The params of --params FILE when given, else of --preset NAME.
 Calibrator::Params params_from(const std::string& preset, const std::string& params_file);
+/// The lidar path of a frame's sweep and why, as the calibrator takes it
+/// with `params` (l2s::lidar_path). The reader has already dropped a ring
+/// field that does not give the scan lines and recovered the rings from the
+/// returns; the words say so.
+std::string frame_path(const io::Frame& frame, const Calibrator::Params& params);
 
 }  // namespace l2s::cli

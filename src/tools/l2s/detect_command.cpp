@@ -55,8 +55,8 @@ std::size_t find_frame(const io::Dataset& dataset, const std::string& frame) {
 // sweeps of its window accumulated (ring_free_frames, as many as the dataset has).
 LidarInspection inspect_lidar_frame(const io::Dataset& dataset, const io::Frame& frame, std::size_t index,
                                     const Calibrator::Params& params) {
-  const bool ring_free = frame.ring_recovery && frame.ring_recovery->structure == io::ScanStructure::RingFree;
-  if (!ring_free) return inspect_lidar(frame.lidar, dataset.target(), params);
+  std::printf("lidar   path: %s\n", frame_path(frame, params).c_str());
+  if (!lidar_path(frame.lidar, params).ring_free) return inspect_lidar(frame.lidar, dataset.target(), params);
   std::vector<LidarCloud> sweeps{frame.lidar};
   for (std::size_t i = index + 1; i < dataset.size() && sweeps.size() < static_cast<std::size_t>(params.ring_free_frames);
        ++i)

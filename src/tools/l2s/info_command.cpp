@@ -19,8 +19,8 @@
 namespace l2s::cli {
 namespace {
 
-// "16 rings from the ring field (laser model: 16 rings)" and the structure
-// line; warnings for doubtful or ring-free sweeps go to stderr.
+// "16 rings from the ring field (laser model: 16 rings)", the structure and
+// path lines; warnings for doubtful or ring-free sweeps go to stderr.
 void print_rings(const io::Frame& frame) {
   std::set<int> rings(frame.lidar.ring.begin(), frame.lidar.ring.end());
   io::RingRecoveryReport report;
@@ -36,6 +36,7 @@ void print_rings(const io::Frame& frame) {
   if (frame.ring_source == io::RingSource::Field)
     std::printf(" (the laser model recovers %d)", report.rings);
   std::printf("\n    structure: %s\n", report.summary().c_str());
+  std::printf("    path: %s\n", frame_path(frame, Calibrator::Params{}).c_str());
   if (report.structure == io::ScanStructure::RingFree)
     std::fprintf(stderr, "l2s: warning: %s: sweep looks ring-free: %s\n", frame.stem.c_str(),
                  report.structure_reason.c_str());
