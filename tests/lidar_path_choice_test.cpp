@@ -67,11 +67,11 @@ struct LeaningBoard {
   }
 };
 
-void expect_detected_ring_free(const LeaningBoard& board, const LidarCloud& cloud) {
+void expect_detected_ring_free(const LeaningBoard& board, const LidarCloud& cloud, double tolerance = 0.005) {
   const LidarInspection in = inspect_lidar(cloud, board.target, Calibrator::Params::preset("default"));
   EXPECT_TRUE(in.ring_free);
   ASSERT_TRUE(in.report.found) << in.report.failed_stage << ": " << in.report.reason;
-  EXPECT_LT(board.worst_centre_error(in.report.centers), 0.005);
+  EXPECT_LT(board.worst_centre_error(in.report.centers), tolerance);
 }
 
 TEST(LidarPathChoice, AnAccumulatedCloudWithoutARingFieldIsRingFree) {
@@ -82,6 +82,16 @@ TEST(LidarPathChoice, AnAccumulatedCloudWithoutARingFieldIsRingFree) {
   const io::ScanClassification scan = io::classify_scan(board.cloud);
   EXPECT_EQ(scan.structure, io::ScanStructure::RingFree) << scan.reason;
   expect_detected_ring_free(board, board.cloud);
+}
+
+TEST(LidarPathChoice, OneCroppedSweepOfTheLeaningBoardIsRingFreeToo) {
+  // A tenth of a second of a Mid-360 on the board: a few thousand returns
+  // on one "line" are no spinning lidar's sweep either. One sweep places
+  // the holes to a centimetre; the calibrator accumulates a window of them.
+  const LeaningBoard board(4000);
+  const io::ScanClassification scan = io::classify_scan(board.cloud);
+  EXPECT_EQ(scan.structure, io::ScanStructure::RingFree) << scan.reason;
+  expect_detected_ring_free(board, board.cloud, 0.015);
 }
 
 TEST(LidarPathChoice, ARingFieldOfConstantValueIsNotOneLaser) {

@@ -21,10 +21,10 @@ namespace l2s::io {
 namespace {
 
 constexpr double kDeg = 180.0 / 3.14159265358979;
-/// One sweep of a spinning lidar puts a few thousand returns on a laser (0.1
-/// deg steps over 360 deg: 3600); one or two values for this many returns are
-/// no laser indices (an accumulated or solid-state cloud).
-constexpr std::size_t kAccumulatedReturns = 10000;
+/// One or two values for this many returns are no laser indices: a spinning
+/// lidar's sweep of a scene has 16 lasers or more (as ring recovery judges
+/// recovered lines, ring_report.cpp).
+constexpr std::size_t kManyReturns = 1000;
 /// [rad] a laser's returns stay within hundredths of a degree of its line
 /// (range noise moves them along it); half a degree is no scan line.
 constexpr double kWideLine = 0.5 / kDeg;
@@ -59,9 +59,8 @@ RingFieldCheck check_ring_field(const LidarCloud& cloud) {
   const ModelInput input = model_input(cloud);
   std::map<int, fan::LineSums> sums;
   for (std::size_t i = 0; i < input.points.size(); ++i) sums[cloud.ring[input.index[i]]].add(input.points[i]);
-  if (input.points.size() >= kAccumulatedReturns && sums.size() <= 2)
-    return unusable(format("%.0f value(s) for %.0f returns, where one sweep of a spinning lidar puts a few "
-                           "thousand on each laser",
+  if (input.points.size() >= kManyReturns && sums.size() <= 2)
+    return unusable(format("%.0f value(s) for %.0f returns, where a spinning lidar's sweep has 16 or more",
                            static_cast<double>(sums.size()), static_cast<double>(input.points.size())));
 
   std::vector<ValueLine> lines;

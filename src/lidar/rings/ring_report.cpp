@@ -20,12 +20,11 @@ constexpr double kSparseRing = 0.02;       // a ring with < 2 % of the median re
 constexpr double kOverlapContrast = 5.0;   // two lasers barely told apart: ~5; clean: tens
 constexpr int kMostRings = 256;            // no spinning lidar has more lasers
 constexpr std::size_t kReturnsPerRing = 10;  // fewer per ring: too many rings
-constexpr std::size_t kManyReturns = 1000;   // enough returns to expect several rings
-// One sweep of a spinning lidar puts a few thousand returns on a laser (0.1
-// deg steps over 360 deg: 3600): one or two lines for this many returns are
-// an accumulated or solid-state cloud, e.g. a board leaning back and cropped,
-// whose returns all fit one laser model z = d tan(e) + h.
-constexpr std::size_t kAccumulatedReturns = 10000;
+// One or two lines for this many returns are no spinning lidar's sweep of a
+// scene: it has 16 lasers or more, and one or two could not show a board's
+// holes anyway. Such a scan is a solid-state one, e.g. a board leaning back
+// and cropped, whose returns all fit one laser model z = d tan(e) + h.
+constexpr std::size_t kManyReturns = 1000;
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char text[160];
@@ -55,11 +54,10 @@ void decide_structure(RingRecoveryReport& report) {
         widths[widths.size() / 2] * kDeg, static_cast<double>(lasers));
     return;
   }
-  if (lasers <= 2 && report.points >= kAccumulatedReturns) {
+  if (lasers <= 2 && report.points >= kManyReturns) {
     report.structure = ScanStructure::RingFree;
     report.structure_reason = format(
-        "only %.0f line(s) for %.0f returns, where one sweep of a spinning lidar puts a few thousand on "
-        "each laser: no scan lines",
+        "only %.0f line(s) for %.0f returns, where a spinning lidar's sweep has 16 or more: no scan lines",
         static_cast<double>(lasers), static_cast<double>(report.points));
     return;
   }
@@ -85,9 +83,6 @@ void check_doubts(RingRecoveryReport& report) {
     add_doubt(report,
               format("%.0f rings for %.0f returns (fewer than %.0f returns a ring)", report.rings,
                      static_cast<double>(report.points), static_cast<double>(kReturnsPerRing)));
-  if (lasers <= 2 && report.points >= kManyReturns)
-    add_doubt(report, format("only %.0f ring(s) in %.0f returns", static_cast<double>(lasers),
-                             static_cast<double>(report.points)));
   if (lasers > 1 && report.contrast < kDoubtContrast)
     add_doubt(report, format("returns spread between the rings (contrast %.1f; scan lines: tens)",
                              report.contrast));
