@@ -334,6 +334,55 @@ TEST(Dataset, DatasetYamlErrorsNameTheFile) {
   EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/left.yaml", "3 distortion_coefficients");
 }
 
+// `lidar: accumulated` (DATASET.md v3): the image frames are the frames;
+// each lidar file pairs with those from its stem up to the next one's.
+TEST(Dataset, AnAccumulatedCloudPairsWithTheImageFramesItCovers) {
+  test::TempDir dir;
+  const std::string folder = write_dataset(dir);
+  for (const char* stem : {"000003", "000004", "000005"}) {
+    fs::copy_file(folder + "/left/000000.png", folder + "/left/" + stem + ".png");
+    fs::copy_file(folder + "/right/000000.png", folder + "/right/" + stem + ".png");
+  }
+  fs::remove(folder + "/lidar/000000.pcd");
+  fs::rename(folder + "/lidar/000002.pcd", folder + "/lidar/000004.pcd");
+  test::write_text(folder + "/dataset.yaml", "lidar: accumulated\n");
+  const Dataset dataset = Dataset::open(folder);
+  EXPECT_TRUE(dataset.accumulated());
+  ASSERT_EQ(dataset.size(), 6u);
+  EXPECT_EQ(dataset.lidar_stems(), (std::vector<std::string>{"000001", "000004"}));
+  const std::vector<std::string> covering{"", "000001", "000001", "000001", "000004", "000004"};
+  for (std::size_t i = 0; i < dataset.size(); ++i) EXPECT_EQ(dataset.lidar_stem(i), covering[i]) << i;
+
+  const Frame before = dataset.load(0);  // before the first lidar file: images, no lidar
+  EXPECT_TRUE(before.lidar_stem.empty());
+  EXPECT_TRUE(before.lidar.empty());
+  EXPECT_FALSE(before.left.empty());
+  const Frame covered = dataset.load(3);
+  EXPECT_EQ(covered.stem, "000003");
+  EXPECT_EQ(covered.lidar.size(), frame("000001", 1).lidar.size());
+  const Frame images = dataset.load_images(5);
+  EXPECT_EQ(images.lidar_stem, "000004");
+  EXPECT_TRUE(images.lidar.empty());
+  EXPECT_FALSE(images.right.empty());
+
+  // A lidar file with no image frame of its stem is named.
+  fs::copy_file(folder + "/lidar/000001.pcd", folder + "/lidar/000007.pcd");
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/lidar/000007.pcd", "no image frame 000007");
+  fs::remove(folder + "/lidar/000007.pcd");
+  fs::remove(folder + "/right/000005.png");
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder, "000005 (no right/000005.png)");
+}
+
+TEST(Dataset, AMisspeltLidarFormIsNamed) {
+  test::TempDir dir;
+  const std::string folder = write_dataset(dir);
+  test::write_text(folder + "/dataset.yaml", "lidar: acumulated\n");
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/dataset.yaml",
+                    "lidar: 'acumulated' is neither sweeps nor accumulated");
+  test::write_text(folder + "/dataset.yaml", "lidar_form: accumulated\n");
+  EXPECT_FILE_ERROR(Dataset::open(folder), folder + "/dataset.yaml", "unknown key 'lidar_form' (known: images, lidar)");
+}
+
 // An organised sweep without a ring field: its rows are its rings.
 TEST(Dataset, TakesRingsFromTheRowsOfAnOrganisedSweep) {
   test::TempDir dir;

@@ -115,6 +115,31 @@ void check_size(const Image& image, const CameraInfo& camera, const std::string&
                                   std::to_string(camera.height));
 }
 
+/// `lidar: accumulated` (DATASET.md v3): the frames are the image frames;
+/// each lidar file covers those from its stem up to the next lidar file's.
+void pair_accumulated(const std::string& folder, const std::set<std::string>& lidar,
+                      const std::set<std::string>& left, const std::set<std::string>& right,
+                      std::vector<std::string>& stems, std::vector<std::string>& lidar_of_frame) {
+  if (left != right) {
+    std::set<std::string> images = left;  // no lidar file is missing: they pair by position
+    images.insert(right.begin(), right.end());
+    throw FileError(folder, "frame stems differ between left/ and right/: " + describe_mismatch(images, left, right));
+  }
+  if (left.empty()) throw FileError(folder, "no image frames (left/*.png)");
+  if (lidar.empty()) throw FileError(join(folder, "lidar"), "no lidar files (*.pcd)");
+  for (const std::string& stem : lidar)
+    if (!left.count(stem))
+      throw FileError(join(folder, "lidar/" + stem + ".pcd"),
+                      "no image frame " + stem + " (lidar: accumulated pairs a lidar file with the image frames "
+                      "from its own stem on)");
+  stems.assign(left.begin(), left.end());
+  std::string covering;
+  for (const std::string& stem : stems) {
+    if (lidar.count(stem)) covering = stem;
+    lidar_of_frame.push_back(covering);
+  }
+}
+
 /// Stereo or mono (DATASET.md v2): right.yaml and right/ come together or not at all.
 CameraLayout camera_layout(const std::string& folder) {
   std::error_code error;
@@ -138,10 +163,15 @@ Dataset Dataset::open(const std::string& folder) {
   const std::string target_path = join(folder, "target.yaml");
   dataset.has_target_file_ = fs::exists(target_path, error);
   dataset.target_ = read_target_or_default(target_path);
+  dataset.lidar_form_ = info.lidar;
   dataset.has_lidar2_ = fs::is_directory(join(folder, "lidar2"), error);
   if (dataset.has_lidar2_) {  // lidar-lidar: no cameras to read
+    if (dataset.accumulated())
+      throw FileError(info_path, "lidar: accumulated pairs lidar files with image frames; a lidar-lidar dataset "
+                                 "(lidar2/) pairs sweeps by stem");
     const auto stems = lidar_pair_stems(folder);
     dataset.stems_.assign(stems.begin(), stems.end());
+    dataset.lidar_stems_ = dataset.lidar_of_frame_ = dataset.stems_;
     return dataset;
   }
   const std::string left_yaml = join(folder, "left.yaml"), right_yaml = join(folder, "right.yaml");
@@ -159,25 +189,40 @@ Dataset Dataset::open(const std::string& folder) {
   const auto lidar = stems_in(folder, "lidar", ".pcd");
   const auto left = stems_in(folder, "left", ".png");
   const auto right = dataset.mono() ? left : stems_in(folder, "right", ".png");
+  dataset.lidar_stems_.assign(lidar.begin(), lidar.end());  // std::set: already sorted
+  if (dataset.accumulated()) {
+    pair_accumulated(folder, lidar, left, right, dataset.stems_, dataset.lidar_of_frame_);
+    return dataset;
+  }
   if (lidar != left || lidar != right)
     throw FileError(folder, "frame stems differ between lidar/, left/ and right/: " +
                                 describe_mismatch(lidar, left, right));
   if (lidar.empty()) throw FileError(folder, "no frames (lidar/*.pcd, left/*.png, right/*.png)");
-  dataset.stems_.assign(lidar.begin(), lidar.end());  // std::set: already sorted
+  dataset.stems_ = dataset.lidar_of_frame_ = dataset.lidar_stems_;
   return dataset;
 }
 
+const std::string& Dataset::lidar_stem(std::size_t index) const {
+  if (index >= lidar_of_frame_.size())
+    throw ParamError("index", std::to_string(index) + " is past the last of " + std::to_string(stems_.size()) +
+                                  " frames in " + folder_);
+  return lidar_of_frame_[index];
+}
+
 Frame Dataset::load(std::size_t index) const {
-  if (index >= stems_.size())
-    throw ParamError("index", std::to_string(index) + " is past the last of " +
-                                  std::to_string(stems_.size()) + " frames in " + folder_);
+  Frame frame = load_images(index);
+  if (!frame.lidar_stem.empty())
+    load_sweep(lidar_path(frame.lidar_stem), &frame.lidar, &frame.ring_source, &frame.ring_recovery);
+  if (has_lidar2_) load_sweep(lidar2_path(frame.stem), &frame.lidar2, &frame.lidar2_ring_source,
+                              &frame.lidar2_ring_recovery);
+  return frame;
+}
+
+Frame Dataset::load_images(std::size_t index) const {
   Frame frame;
+  frame.lidar_stem = lidar_stem(index);
   frame.stem = stems_[index];
-  load_sweep(lidar_path(frame.stem), &frame.lidar, &frame.ring_source, &frame.ring_recovery);
-  if (has_lidar2_) {
-    load_sweep(lidar2_path(frame.stem), &frame.lidar2, &frame.lidar2_ring_source, &frame.lidar2_ring_recovery);
-    return frame;
-  }
+  if (has_lidar2_) return frame;  // lidar-lidar: no images
   frame.left = read_image(left_path(frame.stem));
   check_size(frame.left, cameras_.left, left_path(frame.stem), "left.yaml");
   if (!mono()) {

@@ -4,6 +4,7 @@
 
 #include <l2s/camera.hpp>
 #include <l2s/export.hpp>
+#include <l2s/io/dataset_yaml.hpp>
 #include <l2s/io/pcd.hpp>
 #include <l2s/io/ring_recovery.hpp>
 #include <l2s/target.hpp>
@@ -23,6 +24,10 @@ enum class CameraLayout { Stereo, Mono };
 /// One synchronised frame of both sensors.
 struct Frame {
   std::string stem;  ///< file stem shared by the three files, e.g. "000000"
+  /// The lidar file the frame pairs with: its own stem, or (`lidar:
+  /// accumulated`) the stem of the pose's cloud; empty when no lidar file
+  /// covers the frame (image frames before the first lidar file).
+  std::string lidar_stem;
   LidarCloud lidar;  ///< ring filled (recovered when the file had none), except for a ring-free scan: empty
   Image left;        ///< as stored (gray or BGR)
   Image right;       ///< empty for a mono dataset
@@ -59,6 +64,11 @@ class L2S_EXPORT Dataset {
   /// one of the two without the other is a FileError naming the missing one.
   /// Stems are sorted; files whose names start with '.' or have another
   /// extension are not frames.
+  /// With `lidar: accumulated` in dataset.yaml (DATASET.md v3) the frames
+  /// are the image frames (left and right must list the same stems), and
+  /// each lidar file pairs with the frames from its stem up to the next
+  /// lidar file's; a lidar file without an image frame of its stem is a
+  /// FileError naming it, as is the form on a lidar-lidar dataset.
   static Dataset open(const std::string& folder);
 
   const std::string& folder() const { return folder_; }
@@ -77,6 +87,14 @@ class L2S_EXPORT Dataset {
   const std::vector<std::string>& stems() const { return stems_; }
   /// A lidar-lidar dataset: frames hold lidar and lidar2, no images, no cameras.
   bool has_lidar2() const { return has_lidar2_; }
+  /// `lidar: sweeps` (one sweep per frame) or `lidar: accumulated` (one
+  /// cloud per static pose, beside all its image frames).
+  LidarForm lidar_form() const { return lidar_form_; }
+  bool accumulated() const { return lidar_form_ == LidarForm::Accumulated; }
+  /// Frame.lidar_stem of frame `index` (ParamError when index >= size()).
+  const std::string& lidar_stem(std::size_t index) const;
+  /// The stems of the lidar files, sorted: one per frame, or one per pose.
+  const std::vector<std::string>& lidar_stems() const { return lidar_stems_; }
   std::size_t size() const { return stems_.size(); }
 
   /// Loads frame `index`; throws FileError when a file is unreadable or an
@@ -85,6 +103,9 @@ class L2S_EXPORT Dataset {
   /// and they are lasers (rings_from_rows), else from the laser model
   /// (recover_ring_structure), both with default parameters.
   Frame load(std::size_t index) const;
+  /// load() without the lidar file (Frame.lidar empty, lidar_stem set): the
+  /// image frames of an accumulated cloud, whose cloud is read once.
+  Frame load_images(std::size_t index) const;
 
   /// ground_truth.yaml when present (synthetic data); FileError when malformed.
   /// Its key is T_lidar_lidar2 for a lidar-lidar dataset, else T_lidar_camera.
@@ -103,8 +124,11 @@ class L2S_EXPORT Dataset {
   bool has_target_file_ = false;
   bool has_dataset_file_ = false;
   bool has_lidar2_ = false;
+  LidarForm lidar_form_ = LidarForm::Sweeps;
   std::vector<std::string> warnings_;
   std::vector<std::string> stems_;
+  std::vector<std::string> lidar_stems_;
+  std::vector<std::string> lidar_of_frame_;  // lidar_stem() of each frame
 };
 
 /// Writes a dataset folder: creates it and its sub-folders, writes the camera

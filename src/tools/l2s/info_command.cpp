@@ -45,6 +45,30 @@ void print_rings(const io::Frame& frame) {
                  report.doubt.c_str());
 }
 
+// How the lidar files pair with the frames (DATASET.md v3 `lidar:`).
+void print_lidar_form(const io::Dataset& dataset) {
+  if (!dataset.accumulated()) {
+    std::printf("lidar     sweeps: one per frame, matched by stem\n");
+    return;
+  }
+  std::printf("lidar     accumulated (dataset.yaml): %zu cloud(s), each of a static pose beside the image frames "
+              "from its stem to the next cloud's:",
+              dataset.lidar_stems().size());
+  std::size_t listed = 0;
+  for (const std::string& stem : dataset.lidar_stems()) {
+    std::size_t frames = 0;
+    for (std::size_t i = 0; i < dataset.size(); ++i) frames += dataset.lidar_stem(i) == stem;
+    if (listed++ < 5) std::printf(" %s (%zu frames)", stem.c_str(), frames);
+  }
+  if (listed > 5) std::printf(" ...");
+  std::printf("\n");
+  const auto before = static_cast<std::size_t>(
+      std::find_if(dataset.stems().begin(), dataset.stems().end(), [&](const std::string& stem) {
+        return stem == dataset.lidar_stems().front();
+      }) - dataset.stems().begin());
+  if (before > 0) std::printf("          %zu image frame(s) before the first cloud have no lidar\n", before);
+}
+
 int print_info(const std::string& folder, bool load_all) {
   const auto dataset = io::Dataset::open(folder);
   for (const std::string& warning : dataset.warnings())
@@ -66,10 +90,21 @@ int print_info(const std::string& folder, bool load_all) {
               dataset.has_target_file() ? "" : " (defaults: no target.yaml)");
   std::printf("frames    %zu (%s .. %s)\n", dataset.size(), dataset.stems().front().c_str(),
               dataset.stems().back().c_str());
+  print_lidar_form(dataset);
 
-  // Loading every frame proves each file is readable; by default only the first.
-  const std::size_t count = load_all ? dataset.size() : 1;
-  for (std::size_t i = 0; i < count; ++i) {
+  // Loading every frame proves each file is readable; by default only the
+  // first (of an accumulated dataset: the first lidar file's frame).
+  std::size_t first = 0;
+  while (first + 1 < dataset.size() && dataset.lidar_stem(first).empty()) ++first;
+  const std::size_t count = load_all ? dataset.size() : first + 1;
+  for (std::size_t i = load_all ? 0 : first; i < count; ++i) {
+    if (dataset.accumulated() && dataset.lidar_stem(i) != dataset.stems()[i]) {
+      const std::string& cloud = dataset.lidar_stem(i);
+      const auto frame = dataset.load_images(i);
+      std::printf("  %s: images %s, %s\n", frame.stem.c_str(), frame.left.channels == 1 ? "gray" : "colour",
+                  cloud.empty() ? "no lidar file covers it" : ("with lidar/" + cloud + ".pcd").c_str());
+      continue;
+    }
     const auto frame = dataset.load(i);
     const auto finite = std::count_if(frame.lidar.points.begin(), frame.lidar.points.end(),
                                       [](const Eigen::Vector3d& p) { return p.allFinite(); });
