@@ -113,6 +113,25 @@ struct PoseReport {
   double lidar_rim_radius_ratio = 0.0;
 };
 
+/// The lidar side of one static board pose whose returns were accumulated
+/// over seconds into one cloud (a solid-state lidar as many users keep it;
+/// DATASET.md `lidar: accumulated`): detected once by
+/// Calibrator::detect_accumulated, then given to add() with every image frame
+/// of that pose, whose camera centres its centres pair with. Cheap to copy
+/// (shared, immutable).
+class L2S_EXPORT AccumulatedLidar {
+ public:
+  /// The cloud's detection (found, centres, or why not); empty until made
+  /// by detect_accumulated().
+  const BranchReport& report() const;
+  bool ring_free() const;  ///< the cloud went the ring-free way
+
+ private:
+  friend class Calibrator;
+  struct State;
+  std::shared_ptr<const State> state_;
+};
+
 /// The facade: one per rig and calibration run (see thread safety above).
 class L2S_EXPORT Calibrator {
  public:
@@ -287,6 +306,20 @@ class L2S_EXPORT Calibrator {
   /// add() with the camera branch already run by camera_branch(); only the
   /// lidar branch runs here. The frame's milliseconds include the camera's.
   FrameReport add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id = "");
+
+  /// Detects an accumulated cloud of one static board pose once, as it
+  /// stands (a ring-free one is a whole window already; its path is chosen
+  /// as for a sweep, Params::lidar_scan). Accumulates nothing: give the
+  /// result to add() with each image frame of the pose. Bad clouds are
+  /// reported in its report(), never thrown.
+  AccumulatedLidar detect_accumulated(const LidarCloud& cloud) const;
+  /// add() for a frame of an accumulated cloud's pose: the cloud's centres
+  /// (found once) pair with this frame's camera; its detection time counts
+  /// with the first frame that gives it. Throws as add(lidar, ...), and
+  /// InputError for an AccumulatedLidar not made by detect_accumulated().
+  FrameReport add(const AccumulatedLidar& lidar, const Image& left, const Image& right, const std::string& id = "");
+  FrameReport add(const AccumulatedLidar& lidar, const Image& left, const std::string& id = "");  ///< lidar-mono
+  FrameReport add(const AccumulatedLidar& lidar, const BranchReport& camera, const std::string& id = "");
 
   /// Registration of everything accumulated so far, checked against the
   /// scene (params.check_result). When the scene clearly supports the fit

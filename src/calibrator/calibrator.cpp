@@ -13,6 +13,7 @@
 #include <l2s/error.hpp>
 
 #include <chrono>
+#include <functional>
 #include <future>
 #include <optional>
 #include <sstream>
@@ -72,6 +73,17 @@ struct Calibrator::Impl {
   // on refined poses).
   std::shared_ptr<const CameraObservation> window_camera;
   bool ring_free_lidar = false;  // a frame's sweep had no ring structure
+  // The accumulated cloud of the frames being added (AccumulatedLidar), and
+  // the check's observation of it, made once.
+  std::shared_ptr<const AccumulatedLidar::State> accumulated;
+  std::optional<LidarObservation> accumulated_observation;
+
+  struct LidarSide;
+  LidarSide sweep_side(const LidarCloud& sweep, LidarInspection& trace);
+  LidarSide accumulated_side(const AccumulatedLidar& cloud);
+  FrameReport add_stereo(const LidarSide& side, const Image& left, const Image& right, const std::string& id);
+  FrameReport add_mono(const LidarSide& side, const Image& left, const std::string& id);
+  FrameReport add_with_camera(const LidarSide& side, const BranchReport& camera, const std::string& id);
 
   // Whether at least half of the frames whose camera found the board (and
   // one at least) found it by its marker corners alone, the rims not refined.
@@ -216,49 +228,191 @@ Calibrator::~Calibrator() = default;
 Calibrator::Calibrator(Calibrator&&) noexcept = default;
 Calibrator& Calibrator::operator=(Calibrator&&) noexcept = default;
 
-FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Image& right,
-                            const std::string& id) {
+struct AccumulatedLidar::State {
+  LidarCloud cloud;       // as given: the check observes its discontinuities
+  LidarInspection trace;  // its detection's stages
+  BranchReport report;
+  bool ring_free = false;
+};
+
+const BranchReport& AccumulatedLidar::report() const {
+  static const BranchReport kNone{};
+  return state_ ? state_->report : kNone;
+}
+
+bool AccumulatedLidar::ring_free() const { return state_ && state_->ring_free; }
+
+// The lidar side of a frame: a sweep through the detector (its ring-free
+// window, when it has no rings), or an accumulated cloud detected once.
+struct Calibrator::Impl::LidarSide {
+  bool ring_free = false;
+  std::function<BranchReport()> detect;
+  std::function<LidarObservation(bool found)> observe;
+};
+
+Calibrator::Impl::LidarSide Calibrator::Impl::sweep_side(const LidarCloud& sweep, LidarInspection& trace) {
+  LidarSide side;
+  side.ring_free = detail::is_ring_free(sweep, params);
+  side.detect = [this, &sweep, &trace, ring_free = side.ring_free] { return lidar.detect(sweep, ring_free, &trace); };
+  side.observe = [this, &sweep, &trace](bool found) { return observe_lidar(sweep, trace, found, observer); };
+  return side;
+}
+
+Calibrator::Impl::LidarSide Calibrator::Impl::accumulated_side(const AccumulatedLidar& cloud) {
+  if (!cloud.state_) throw InputError("lidar", "an empty AccumulatedLidar (make it with detect_accumulated())");
+  const std::shared_ptr<const AccumulatedLidar::State> state = cloud.state_;
+  const bool first_use = state != accumulated;
+  if (first_use) {
+    accumulated = state;
+    accumulated_observation.reset();
+  }
+  LidarSide side;
+  side.ring_free = state->ring_free;
+  side.detect = [state, first_use] {
+    BranchReport report = state->report;
+    if (!first_use) report.milliseconds = 0.0;  // its time counts once, with its first frame
+    return report;
+  };
+  side.observe = [this, state](bool) {
+    if (!accumulated_observation)
+      accumulated_observation = observe_lidar(state->cloud, state->trace, state->report.found, observer);
+    return *accumulated_observation;
+  };
+  return side;
+}
+
+FrameReport Calibrator::Impl::add_stereo(const LidarSide& side, const Image& left, const Image& right,
+                                         const std::string& id) {
   const auto start = std::chrono::steady_clock::now();
-  Impl& impl = *impl_;
-  if (impl.mono) throw InputError("right image", "given to a lidar-mono calibrator (add(lidar, left) takes one image)");
+  if (mono) throw InputError("right image", "given to a lidar-mono calibrator (add(lidar, left) takes one image)");
   // Here, not in the camera branch: an exception must leave before the lidar
   // branch runs and from the caller's thread.
-  detail::check_stereo_images(left, right, impl.cameras);
+  detail::check_stereo_images(left, right, cameras);
   // The traces cost nothing extra (the branches keep their stages in them
   // either way); the check observes the frames it keeps from them.
-  LidarInspection lidar_trace;
   CameraInspection camera_trace;
-  const bool ring_free = detail::is_ring_free(lidar, impl.params);
-  const auto lidar_branch = [&] { return impl.lidar.detect(lidar, ring_free, &lidar_trace); };
   const auto camera_branch = [&] {
-    return timed([&] {
-      return detail::run_camera_branch(left, right, *impl.camera_setup, impl.target, impl.params, &camera_trace);
-    });
+    return timed([&] { return detail::run_camera_branch(left, right, *camera_setup, target, params, &camera_trace); });
   };
 
   FrameReport report;
-  if (impl.params.parallel_branches) {
+  if (params.parallel_branches) {
     // The branches share nothing but const inputs; the camera side is the slower one.
     auto camera = std::async(std::launch::async, camera_branch);
-    report.lidar = lidar_branch();
+    report.lidar = side.detect();
     report.camera = camera.get();
   } else {
-    report.lidar = lidar_branch();
+    report.lidar = side.detect();
     report.camera = camera_branch();
   }
   std::shared_ptr<const CameraObservation> camera_observation;  // made once, when asked for
   const bool lidar_found = report.lidar.found, camera_found = report.camera.found;
-  FrameReport recorded = impl_->record(
-      std::move(report), id, ring_free,
-      [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl.observer); },
+  FrameReport recorded = record(
+      std::move(report), id, side.ring_free, [&] { return side.observe(lidar_found); },
       [&] {
         if (!camera_observation)
           camera_observation = std::make_shared<const CameraObservation>(
-              observe_camera(left, camera_trace, camera_found, impl.cameras, impl.observer));
+              observe_camera(left, camera_trace, camera_found, cameras, observer));
         return camera_observation;
       });
-  recorded.milliseconds = impl_->frames.back().milliseconds = milliseconds_since(start);
+  recorded.milliseconds = frames.back().milliseconds = milliseconds_since(start);
   return recorded;
+}
+
+FrameReport Calibrator::Impl::add_mono(const LidarSide& side, const Image& left, const std::string& id) {
+  const auto start = std::chrono::steady_clock::now();
+  // Before any work, from the caller's thread (as the stereo add()).
+  if (!mono) throw InputError("right image", "missing: a stereo calibrator takes add(lidar, left, right)");
+  detail::check_image(left, cameras.left, "left");
+  const auto camera_branch = [&] { return timed([&] { return detail::run_mono_branch(left, *mono); }); };
+  std::future<BranchReport> camera;
+  if (params.parallel_branches) camera = std::async(std::launch::async, camera_branch);
+  FrameReport report;
+  report.lidar = side.detect();
+  report.camera = camera.valid() ? camera.get() : camera_branch();
+  // The check sees the left image's edges and the markers' board pose (no
+  // stereo depth): made only for the frames it keeps.
+  const std::shared_ptr<const CameraObservation> pose =
+      report.camera.found ? report.camera.observation : std::shared_ptr<const CameraObservation>();
+  const auto observe_camera = [&] {
+    auto observation = std::make_shared<CameraObservation>(pose ? *pose : CameraObservation{});
+    observation->edges = observer.observe_edges(left, cameras);
+    return std::shared_ptr<const CameraObservation>(std::move(observation));
+  };
+  const bool lidar_found = report.lidar.found;
+  FrameReport recorded =
+      record(std::move(report), id, side.ring_free, [&] { return side.observe(lidar_found); }, observe_camera);
+  recorded.milliseconds = frames.back().milliseconds = milliseconds_since(start);
+  return recorded;
+}
+
+FrameReport Calibrator::Impl::add_with_camera(const LidarSide& side, const BranchReport& camera, const std::string& id) {
+  FrameReport report;
+  report.lidar = side.detect();
+  report.camera = camera;
+  report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
+  const bool lidar_found = report.lidar.found;
+  return record(
+      std::move(report), id, side.ring_free, [&] { return side.observe(lidar_found); },
+      [&, observation = std::shared_ptr<const CameraObservation>()]() mutable {
+        if (observation) return observation;  // asked twice for a ring-free window's frame
+        if (!camera.observation)
+          observation = std::make_shared<const CameraObservation>(
+              camera.found ? observation_from_centers(camera.centers) : CameraObservation{});
+        else if (!camera.check_left || !camera.observation->edges.empty())
+          observation = camera.observation;
+        else {
+          auto complete = std::make_shared<CameraObservation>(*camera.observation);
+          complete->edges = observer.observe_edges(*camera.check_left, camera_setup->cameras);
+          observation = std::move(complete);
+        }
+        return observation;
+      });
+}
+
+FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const Image& right,
+                            const std::string& id) {
+  LidarInspection trace;
+  return impl_->add_stereo(impl_->sweep_side(lidar, trace), left, right, id);
+}
+
+FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const std::string& id) {
+  LidarInspection trace;
+  return impl_->add_mono(impl_->sweep_side(lidar, trace), left, id);
+}
+
+FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
+  LidarInspection trace;
+  return impl_->add_with_camera(impl_->sweep_side(lidar, trace), camera, id);
+}
+
+AccumulatedLidar Calibrator::detect_accumulated(const LidarCloud& cloud) const {
+  const Impl& impl = *impl_;
+  const auto start = std::chrono::steady_clock::now();
+  auto state = std::make_shared<AccumulatedLidar::State>();
+  state->cloud = cloud;
+  state->ring_free = detail::is_ring_free(cloud, impl.params);
+  // A whole window already: detected as it stands, never windowed again.
+  state->report = state->ring_free ? detail::run_ring_free_branch(detail::accumulate_ring_free({&cloud}, impl.params),
+                                                                  impl.target, impl.params, &state->trace)
+                                   : detail::run_lidar_branch(cloud, impl.target, impl.params, &state->trace);
+  state->report.milliseconds = milliseconds_since(start);
+  AccumulatedLidar out;
+  out.state_ = std::move(state);
+  return out;
+}
+
+FrameReport Calibrator::add(const AccumulatedLidar& lidar, const Image& left, const Image& right,
+                            const std::string& id) {
+  return impl_->add_stereo(impl_->accumulated_side(lidar), left, right, id);
+}
+
+FrameReport Calibrator::add(const AccumulatedLidar& lidar, const Image& left, const std::string& id) {
+  return impl_->add_mono(impl_->accumulated_side(lidar), left, id);
+}
+
+FrameReport Calibrator::add(const AccumulatedLidar& lidar, const BranchReport& camera, const std::string& id) {
+  return impl_->add_with_camera(impl_->accumulated_side(lidar), camera, id);
 }
 
 BranchReport Calibrator::camera_branch(const Image& left, const Image& right) const {
@@ -288,65 +442,7 @@ BranchReport Calibrator::camera_branch(const Image& left) const {
   return timed([&] { return detail::run_mono_branch(left, *impl.mono); });
 }
 
-FrameReport Calibrator::add(const LidarCloud& lidar, const Image& left, const std::string& id) {
-  const auto start = std::chrono::steady_clock::now();
-  Impl& impl = *impl_;
-  // Before any work, from the caller's thread (as the stereo add()).
-  if (!impl.mono) throw InputError("right image", "missing: a stereo calibrator takes add(lidar, left, right)");
-  detail::check_image(left, impl.cameras.left, "left");
-  const auto camera_branch = [&] { return timed([&] { return detail::run_mono_branch(left, *impl.mono); }); };
-  std::future<BranchReport> camera;
-  if (impl.params.parallel_branches) camera = std::async(std::launch::async, camera_branch);
-  LidarInspection lidar_trace;
-  FrameReport report;
-  const bool ring_free = detail::is_ring_free(lidar, impl.params);
-  report.lidar = impl.lidar.detect(lidar, ring_free, &lidar_trace);
-  report.camera = camera.valid() ? camera.get() : camera_branch();
-  // The check sees the left image's edges and the markers' board pose (no
-  // stereo depth): made only for the frames it keeps.
-  const std::shared_ptr<const CameraObservation> pose =
-      report.camera.found ? report.camera.observation : std::shared_ptr<const CameraObservation>();
-  const auto observe_camera = [&] {
-    auto observation = std::make_shared<CameraObservation>(pose ? *pose : CameraObservation{});
-    observation->edges = impl.observer.observe_edges(left, impl.cameras);
-    return std::shared_ptr<const CameraObservation>(std::move(observation));
-  };
-  const bool lidar_found = report.lidar.found;
-  FrameReport recorded = impl.record(
-      std::move(report), id, ring_free,
-      [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl.observer); }, observe_camera);
-  recorded.milliseconds = impl.frames.back().milliseconds = milliseconds_since(start);
-  return recorded;
-}
-
 bool Calibrator::mono() const { return impl_->mono != nullptr; }
-
-FrameReport Calibrator::add(const LidarCloud& lidar, const BranchReport& camera, const std::string& id) {
-  FrameReport report;
-  LidarInspection lidar_trace;
-  const bool ring_free = detail::is_ring_free(lidar, impl_->params);
-  report.lidar = impl_->lidar.detect(lidar, ring_free, &lidar_trace);
-  report.camera = camera;
-  report.milliseconds = report.lidar.milliseconds + camera.milliseconds;
-  const bool lidar_found = report.lidar.found;
-  return impl_->record(
-      std::move(report), id, ring_free,
-      [&] { return observe_lidar(lidar, lidar_trace, lidar_found, impl_->observer); },
-      [&, observation = std::shared_ptr<const CameraObservation>()]() mutable {
-        if (observation) return observation;  // asked twice for a ring-free window's frame
-        if (!camera.observation)
-          observation = std::make_shared<const CameraObservation>(
-              camera.found ? observation_from_centers(camera.centers) : CameraObservation{});
-        else if (!camera.check_left || !camera.observation->edges.empty())
-          observation = camera.observation;
-        else {
-          auto complete = std::make_shared<CameraObservation>(*camera.observation);
-          complete->edges = impl_->observer.observe_edges(*camera.check_left, impl_->camera_setup->cameras);
-          observation = std::move(complete);
-        }
-        return observation;
-      });
-}
 
 Calibrator::Result Calibrator::result() const {
   const Impl& impl = *impl_;
@@ -370,6 +466,8 @@ void Calibrator::reset() {
   impl_->lidar.reset();
   impl_->window_camera.reset();
   impl_->ring_free_lidar = false;
+  impl_->accumulated.reset();
+  impl_->accumulated_observation.reset();
 }
 
 const std::vector<CheckFrame>& Calibrator::check_frames() const { return impl_->check_frames.frames(); }

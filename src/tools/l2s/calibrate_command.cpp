@@ -115,8 +115,13 @@ io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::si
   std::size_t doubtful_rings = 0;
   std::string first_doubt;
   const bool stereo = !dataset.mono() && frames_ahead > 0;
-  const auto prepare = [&dataset, &calibrator, stereo](std::size_t i) {
-    PreparedFrame prepared{dataset.load(i), std::nullopt};
+  // An accumulated dataset's cloud is read with the first frame of its pose only.
+  const auto read = [&dataset](std::size_t i) {
+    return dataset.accumulated() && dataset.lidar_stem(i) != dataset.stems()[i] ? dataset.load_images(i)
+                                                                                : dataset.load(i);
+  };
+  const auto prepare = [&read, &calibrator, stereo](std::size_t i) {
+    PreparedFrame prepared{read(i), std::nullopt};
     if (stereo) prepared.camera = calibrator.camera_branch(prepared.frame.left, prepared.frame.right);
     return prepared;
   };
@@ -130,22 +135,34 @@ io::Frame add_frames(const io::Dataset& dataset, Calibrator& calibrator, std::si
   // Workers still running when an exception leaves finish before the
   // dataset and calibrator they use are gone: the futures' destructors wait.
   launch();
+  AccumulatedLidar pose_cloud;  // `lidar: accumulated`: the cloud of the pose being added, detected once
+  LidarCloud pose_points;
   for (std::size_t i = 0; i < count; ++i) {
     PreparedFrame prepared = ahead.front().get();
     ahead.pop_front();
     launch();
     io::Frame& frame = prepared.frame;
+    const bool accumulated = dataset.accumulated() && !frame.lidar_stem.empty();
+    if (accumulated && frame.lidar_stem == frame.stem) {
+      pose_cloud = calibrator.detect_accumulated(frame.lidar);
+      pose_points = std::move(frame.lidar);
+    }
     if (frame.ring_recovery && (frame.ring_recovery->doubtful ||
                                 frame.ring_recovery->structure == io::ScanStructure::RingFree)) {
       if (doubtful_rings++ == 0) first_doubt = frame.stem + ": " + frame.ring_recovery->summary();
     }
-    const FrameReport report = prepared.camera   ? calibrator.add(frame.lidar, *prepared.camera, frame.stem)
-                               : dataset.mono() ? calibrator.add(frame.lidar, frame.left, frame.stem)
-                                                : calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
+    const FrameReport report =
+        accumulated ? (prepared.camera   ? calibrator.add(pose_cloud, *prepared.camera, frame.stem)
+                       : dataset.mono() ? calibrator.add(pose_cloud, frame.left, frame.stem)
+                                        : calibrator.add(pose_cloud, frame.left, frame.right, frame.stem))
+        : prepared.camera ? calibrator.add(frame.lidar, *prepared.camera, frame.stem)
+        : dataset.mono()  ? calibrator.add(frame.lidar, frame.left, frame.stem)
+                          : calibrator.add(frame.lidar, frame.left, frame.right, frame.stem);
     if (verbose) print_frame_failure(report);
     progress.update(i + 1);
     last_frame = std::move(frame);
   }
+  if (dataset.accumulated() && !last_frame.lidar_stem.empty()) last_frame.lidar = std::move(pose_points);
   progress.finish();
   if (doubtful_rings > 0)
     std::fprintf(stderr, "l2s: warning: %zu of %zu sweeps have no ring field and a doubtful or no ring structure (first %s)\n",
