@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -90,6 +91,37 @@ TEST(SimulateDataset, FollowsTheDatasetContract) {
   L2S_NEED_DATASET_CHECKER();
   const std::string command =
       "/usr/bin/python3 " + test::dataset_checker() + " " + folder + " --lidar-beams 64 >/dev/null";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+TEST(SimulateDataset, WritesOneAccumulatedCloudBesideTheImageFrames) {
+  test::TempDir dir;
+  SimulationConfig config = SimulationConfig::paper(2, "avia");
+  config.frames = 3;
+  config.accumulated_seconds = 1.0;
+  config.accumulated_crop = 0.3;
+  const std::string folder = dir.file("acc");
+  const DatasetSimulator simulator(config);
+  simulator.write(folder);
+
+  const io::Dataset dataset = io::Dataset::open(folder);
+  EXPECT_TRUE(dataset.accumulated());
+  ASSERT_EQ(dataset.size(), 3u);
+  EXPECT_EQ(dataset.lidar_stems(), std::vector<std::string>{"000000"});
+  EXPECT_EQ(dataset.lidar_stem(2), "000000");
+  const io::Frame frame = dataset.load(0);
+  // Ten sweeps' returns, only those within 0.3 m of the board's rectangle.
+  const auto truth = simulator.true_hole_centers().lidar;
+  const Eigen::Vector3d middle = 0.25 * (truth[0] + truth[1] + truth[2] + truth[3]);
+  ASSERT_GT(frame.lidar.size(), 5000u);
+  for (const Eigen::Vector3d& p : frame.lidar.points)
+    ASSERT_LT((p - middle).norm(), 0.5 * std::hypot(config.target.board_width, config.target.board_height) + 0.6);
+  std::size_t whole = 0;
+  for (int i = 0; i < 10; ++i) whole += simulator.sweep(i).size();
+  EXPECT_LT(frame.lidar.size(), whole);
+
+  L2S_NEED_DATASET_CHECKER();
+  const std::string command = "/usr/bin/python3 " + test::dataset_checker() + " " + folder + " >/dev/null";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
 }
 

@@ -28,6 +28,11 @@ void check_image(const Image& image, const CameraInfo& camera, const char* field
                                 std::to_string(camera.width) + "x" + std::to_string(camera.height));
 }
 
+void check_stem(const std::string& stem) {
+  if (stem.empty() || stem[0] == '.' || stem.find_first_of("/\\") != std::string::npos)
+    throw ParamError("frame.stem", "'" + stem + "' is not a plain file stem");
+}
+
 }  // namespace
 
 DatasetWriter::DatasetWriter(const std::string& folder, const StereoCamera& cameras,
@@ -65,9 +70,7 @@ DatasetWriter::DatasetWriter(const std::string& folder, const StereoCamera& came
 }
 
 void DatasetWriter::write(const Frame& frame, PcdEncoding encoding) const {
-  if (frame.stem.empty() || frame.stem[0] == '.' ||
-      frame.stem.find_first_of("/\\") != std::string::npos)
-    throw ParamError("frame.stem", "'" + frame.stem + "' is not a plain file stem");
+  check_stem(frame.stem);
   if (lidar_pair_) {
     write_pcd(join(folder_, "lidar2/" + frame.stem + ".pcd"), frame.lidar2, encoding);
     write_pcd(join(folder_, "lidar/" + frame.stem + ".pcd"), frame.lidar, encoding);
@@ -80,6 +83,24 @@ void DatasetWriter::write(const Frame& frame, PcdEncoding encoding) const {
   write_png(join(folder_, "left/" + frame.stem + ".png"), frame.left);
   if (!mono) write_png(join(folder_, "right/" + frame.stem + ".png"), frame.right);
   write_pcd(join(folder_, "lidar/" + frame.stem + ".pcd"), frame.lidar, encoding);
+}
+
+void DatasetWriter::write_images(const Frame& frame) const {
+  check_stem(frame.stem);
+  if (lidar_pair_) throw ParamError("frame", "a lidar-lidar dataset has no images");
+  const bool mono = layout_ == CameraLayout::Mono;
+  check_image(frame.left, cameras_.left, "frame.left");
+  if (!mono) check_image(frame.right, cameras_.right, "frame.right");
+  write_png(join(folder_, "left/" + frame.stem + ".png"), frame.left);
+  if (!mono) write_png(join(folder_, "right/" + frame.stem + ".png"), frame.right);
+}
+
+void DatasetWriter::write_accumulated_lidar(const std::string& stem, const LidarCloud& cloud,
+                                            PcdEncoding encoding) const {
+  check_stem(stem);
+  if (lidar_pair_) throw ParamError("lidar", "a lidar-lidar dataset pairs sweeps by stem, not accumulated clouds");
+  write_dataset_info(join(folder_, "dataset.yaml"), {cameras_.images, LidarForm::Accumulated});
+  write_pcd(join(folder_, "lidar/" + stem + ".pcd"), cloud, encoding);
 }
 
 DatasetWriter DatasetWriter::lidar_pair(const std::string& folder, const Target& target) {

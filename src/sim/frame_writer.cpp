@@ -15,7 +15,8 @@ std::string stem_of(int index) {
 }
 
 void write_frames(const io::DatasetWriter& writer, int count, int threads,
-                  const std::function<SimulatedFrame(int)>& frame, const ProgressCallback& progress) {
+                  const std::function<SimulatedFrame(int)>& frame, const ProgressCallback& progress,
+                  FrameFiles files) {
   std::mutex mutex;
   int done = 0;
   std::exception_ptr failure;
@@ -32,7 +33,10 @@ void write_frames(const io::DatasetWriter& writer, int count, int threads,
       out.left = std::move(simulated.left);
       out.right = std::move(simulated.right);
       out.lidar2 = std::move(simulated.lidar2);
-      writer.write(out);
+      if (files == FrameFiles::Images)
+        writer.write_images(out);
+      else
+        writer.write(out);
       std::lock_guard<std::mutex> lock(mutex);
       ++done;
       if (progress) progress(done, count);

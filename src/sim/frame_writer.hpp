@@ -18,8 +18,11 @@ std::string stem_of(int index);
 /// own noise), so workers take them in any order: PNG encoding dominates and
 /// would leave a core idle otherwise. Progress is reported as a count of
 /// frames done, from under a lock; the first exception stops the others and
-/// is rethrown.
+/// is rethrown. `files`: whole frames, or their images alone (a `lidar:
+/// accumulated` dataset, whose cloud is written apart).
+enum class FrameFiles { All, Images };
 void write_frames(const io::DatasetWriter& writer, int count, int threads,
-                  const std::function<SimulatedFrame(int)>& frame, const ProgressCallback& progress);
+                  const std::function<SimulatedFrame(int)>& frame, const ProgressCallback& progress,
+                  FrameFiles files = FrameFiles::All);
 
 }  // namespace l2s::sim::detail

@@ -41,6 +41,10 @@ void SimulationConfig::validate() const {
   if (frames < 1 || frames > 1000000) throw ParamError("frames", "must be 1..1000000");
   if (!(noise_factor >= 0.0 && noise_factor <= 100.0)) throw ParamError("noise_factor", "must be 0..100");
   if (threads < 0) throw ParamError("threads", "must be >= 0 (0 = all cores)");
+  if (!(accumulated_seconds >= 0.0 && accumulated_seconds <= 60.0))
+    throw ParamError("accumulated_seconds", "must be 0..60 s (0: one sweep per frame)");
+  if (!(accumulated_crop >= 0.0 && std::isfinite(accumulated_crop)))
+    throw ParamError("accumulated_crop", "must be >= 0 m (0: no crop)");
   target.validate();
   if (mono && !target.markers)
     throw ParamError("mono", "a mono camera finds the board by its markers: the target has none (target.markers)");
@@ -126,11 +130,16 @@ DatasetSimulator::DatasetSimulator(DatasetSimulator&&) noexcept = default;
 DatasetSimulator& DatasetSimulator::operator=(DatasetSimulator&&) noexcept = default;
 
 SimulatedFrame DatasetSimulator::frame(int index) const {
+  SimulatedFrame out = images(index);
+  out.lidar = sweep(index);
+  return out;
+}
+
+SimulatedFrame DatasetSimulator::images(int index) const {
   if (index < 0) throw ParamError("frame", "index must be >= 0");
   const Impl& s = *impl_;
   const auto frame = static_cast<std::uint64_t>(index);
   SimulatedFrame out;
-  out.lidar = sweep(index);
   const std::uint64_t image_seed = detail::hash_counters(s.config.seed, kImageStream);
   if (s.config.mono) {
     // The left image's noise is the stereo dataset's, so both kinds of one config agree.
@@ -149,12 +158,49 @@ LidarCloud DatasetSimulator::sweep(int index) const {
   return s.lidar->sweep(*s.caster, s.config.setting.T_cambody_lidar(), static_cast<std::uint64_t>(index));
 }
 
+LidarCloud DatasetSimulator::accumulated_cloud() const {
+  const Impl& s = *impl_;
+  const SimulationConfig& c = s.config;
+  if (!(c.accumulated_seconds > 0.0)) throw ParamError("accumulated_seconds", "is 0: the dataset has one sweep per frame");
+  constexpr double kSweepsPerSecond = 10.0;
+  const int sweeps = std::max(1, static_cast<int>(std::lround(c.accumulated_seconds * kSweepsPerSecond)));
+  const Eigen::Isometry3d T_board_lidar = (c.setting.T_cambody_lidar().inverse() * s.scene.T_cambody_board).inverse();
+  const double half_width = 0.5 * c.target.board_width + c.accumulated_crop;
+  const double half_height = 0.5 * c.target.board_height + c.accumulated_crop;
+  const auto kept = [&](const Eigen::Vector3d& p) {
+    if (c.accumulated_crop <= 0.0) return true;
+    const Eigen::Vector3d b = T_board_lidar * p;
+    return p.allFinite() && std::abs(b.x()) <= half_width && std::abs(b.y()) <= half_height &&
+           std::abs(b.z()) <= c.accumulated_crop;
+  };
+  LidarCloud cloud;
+  for (int i = 0; i < sweeps; ++i) {
+    const LidarCloud one = sweep(i);
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      if (!kept(one.points[k])) continue;
+      cloud.points.push_back(one.points[k]);
+      if (one.has_intensity()) cloud.intensity.push_back(one.intensity[k]);
+      if (one.has_ring()) cloud.ring.push_back(one.ring[k]);
+    }
+  }
+  if (cloud.intensity.size() != cloud.size()) cloud.intensity.clear();
+  if (cloud.ring.size() != cloud.size()) cloud.ring.clear();
+  return cloud;
+}
+
 void DatasetSimulator::write(const std::string& folder, const ProgressCallback& progress) const {
   const Impl& s = *impl_;
   const io::DatasetWriter writer(folder, cameras(), s.config.target,
                                  s.config.mono ? io::CameraLayout::Mono : io::CameraLayout::Stereo);
   writer.write_ground_truth(T_lidar_camera());
   detail::write_scene_record(folder + "/scene.yaml", s.config, s.pose, s.scene, s.model, s.placement);
+  if (s.config.accumulated_seconds > 0.0) {
+    // The images first, the cloud last: the dataset is whole once its lidar file exists.
+    detail::write_frames(writer, s.config.frames, s.config.threads, [this](int i) { return images(i); }, progress,
+                         detail::FrameFiles::Images);
+    writer.write_accumulated_lidar(detail::stem_of(0), accumulated_cloud());
+    return;
+  }
   detail::write_frames(writer, s.config.frames, s.config.threads, [this](int i) { return frame(i); }, progress);
 }
 

@@ -155,6 +155,15 @@ class L2S_EXPORT DatasetWriter {
   /// existing frame of that stem is replaced). Throws ParamError when the stem is not a plain file
   /// name or an image size differs from its camera.
   void write(const Frame& frame, PcdEncoding encoding = PcdEncoding::Binary) const;
+  /// A `lidar: accumulated` dataset (DATASET.md v3): the images of a frame
+  /// alone (left/STEM.png, right/STEM.png), checked as write() checks them.
+  void write_images(const Frame& frame) const;
+  /// A `lidar: accumulated` dataset: one static pose's accumulated cloud as
+  /// lidar/STEM.pcd (STEM: the first image frame of the pose), and
+  /// dataset.yaml saying `lidar: accumulated`. Throws ParamError for a stem
+  /// that is not a plain file name.
+  void write_accumulated_lidar(const std::string& stem, const LidarCloud& cloud,
+                               PcdEncoding encoding = PcdEncoding::Binary) const;
   /// Writes ground_truth.yaml (key T_lidar_camera).
   void write_ground_truth(const Eigen::Isometry3d& T_lidar_camera) const;
   /// Writes ground_truth.yaml of a lidar-lidar dataset (key T_lidar_lidar2).

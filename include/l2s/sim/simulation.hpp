@@ -48,6 +48,15 @@ struct L2S_SIM_EXPORT SimulationConfig {
   /// The target must carry markers (Target::markers).
   bool mono = false;
 
+  /// A `lidar: accumulated` dataset (DATASET.md v3) when > 0: the lidar's
+  /// returns over this many seconds (10 sweeps a second) as one cloud, as
+  /// users of solid-state lidars keep a static board, beside the `frames`
+  /// image frames; 0: one sweep per frame. 0..60
+  double accumulated_seconds = 0.0;
+  /// [m] With accumulated_seconds: only the returns within this distance of
+  /// the board's rectangle are kept, as users crop such a cloud; 0: all. >= 0
+  double accumulated_crop = 0.0;
+
   /// The ground truth of this config in the dataset's camera frame
   /// (DATASET.md): the setting's for raw images (the physical left camera)
   /// and the ideal rig; for rectified images of a non-ideal rig, relative to
@@ -95,8 +104,16 @@ class L2S_SIM_EXPORT DatasetSimulator {
   /// callers that take the images from a simulator of another lidar model).
   LidarCloud sweep(int index) const;
 
+  /// The lidar's returns of sweeps 0 .. 10 * accumulated_seconds - 1 as one
+  /// cloud (intensity and ring kept when the sweeps have them), cropped to
+  /// accumulated_crop around the board when that is set. ParamError when
+  /// accumulated_seconds is 0.
+  LidarCloud accumulated_cloud() const;
+
   /// Writes the whole dataset (cameras, target, frames, ground_truth.yaml and
-  /// scene.yaml with the setting and board pose) into `folder`.
+  /// scene.yaml with the setting and board pose) into `folder`; with
+  /// accumulated_seconds, the image frames and one accumulated cloud
+  /// (lidar/000000.pcd) in a `lidar: accumulated` dataset.
   void write(const std::string& folder, const ProgressCallback& progress = {}) const;
 
   const SimulationConfig& config() const;
@@ -118,6 +135,7 @@ class L2S_SIM_EXPORT DatasetSimulator {
   std::vector<std::string> warnings() const;  ///< placement failures when not strict
 
  private:
+  SimulatedFrame images(int index) const;  // frame(index) without its sweep
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

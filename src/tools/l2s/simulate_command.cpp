@@ -57,6 +57,8 @@ struct SimulateOptions {
 
   // --- Lidar side ---
   bool lidar_quirks = false;
+  double accumulate = 0.0;  // [s] > 0: one accumulated cloud beside the image frames (`lidar: accumulated`)
+  double crop = 0.0;        // [m] with accumulate: keep the returns this close to the board
 
   // --- Several board poses (issue 9) ---
   std::optional<int> poses;  // absent: one pose, the single-pose dataset as always
@@ -129,6 +131,12 @@ int write_dataset(const sim::DatasetSimulator& simulator, const SimulateOptions&
   std::printf("wrote %s: %d frames, %s%s, setting %d, K = %g, seed %llu\n", options.out_dir.c_str(),
               config.frames, config.lidar.c_str(), config.lidar_quirks.any() ? " with quirks" : "",
               config.setting_index, config.noise_factor, static_cast<unsigned long long>(config.seed));
+  if (config.accumulated_seconds > 0.0)
+    std::printf("lidar: accumulated: one cloud of %g s of returns beside the %d image frames%s\n",
+                config.accumulated_seconds, config.frames,
+                config.accumulated_crop > 0.0 ? (", cropped to " + std::to_string(config.accumulated_crop).substr(0, 4) +
+                                                 " m around the board").c_str()
+                                              : "");
   std::printf("ground truth T_lidar_camera translation (%.4f, %.4f, %.4f) m\n", t.x(), t.y(), t.z());
   std::printf("%s %dx%d, %s images\n", config.mono ? "mono camera" : "cameras", config.rig.width, config.rig.height,
               config.rig.images() == ImageKind::Raw ? "raw" : "rectified");
@@ -194,6 +202,13 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
                                                           options.threads, boards);
     std::printf("random scene %llu (%d redraws): %s\n", static_cast<unsigned long long>(scene.seed), scene.redraws,
                 scene.summary.c_str());
+    if (options.accumulate > 0.0) {  // the same scene, its lidar kept as one cloud
+      sim::SimulationConfig config = scene.simulator->config();
+      config.accumulated_seconds = options.accumulate;
+      config.accumulated_crop = options.crop;
+      config.board_pose = scene.simulator->board_pose();
+      return write_dataset(sim::DatasetSimulator(config), options);
+    }
     return write_dataset(*scene.simulator, options);
   }
   sim::SimulationConfig config = options.scene_file.empty()
@@ -215,6 +230,8 @@ int run_simulate(const SimulateOptions& options, const CLI::App& command) {
   if (options.mono) config.mono = true;
   if (given("--threads")) config.threads = options.threads;
   if (options.lenient) config.strict_placement = false;
+  config.accumulated_seconds = options.accumulate;
+  config.accumulated_crop = options.crop;
   apply_camera_options(options, command, &config);
   if (options.lidar_quirks) config.lidar_quirks = sim::LidarQuirks::all(config.lidar_quirks.table_seed);
 
@@ -275,6 +292,16 @@ void add_simulate_command(CLI::App& app, Runner& runner) {
       ->excludes("--random-scene");
   command->add_flag("--lidar-quirks", options->lidar_quirks,
                     "simulate a real lidar: per-laser calibration table, beam divergence and mixed returns");
+  command->add_option("--accumulate", options->accumulate,
+                      "seconds of lidar returns (10 sweeps/s) kept as one cloud beside the --frames image frames: "
+                      "a `lidar: accumulated` dataset, as solid-state lidar users keep a static board")
+      ->check(CLI::Range(0.1, 60.0))
+      ->excludes("--poses")
+      ->excludes("--lidar2");
+  command->add_option("--crop", options->crop,
+                      "with --accumulate: keep only the returns within this many metres of the board")
+      ->check(CLI::Range(0.0, 100.0))
+      ->needs("--accumulate");
   command->callback([&runner, options, command] {
     runner = [options, command] { return run_simulate(*options, *command); };
   });
