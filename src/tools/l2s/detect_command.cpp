@@ -52,11 +52,18 @@ std::size_t find_frame(const io::Dataset& dataset, const std::string& frame) {
 }
 
 // A ring-free sweep is detected as the Calibrator does: with the next
-// sweeps of its window accumulated (ring_free_frames, as many as the dataset has).
+// sweeps of its window accumulated (ring_free_frames, as many as the dataset
+// has); an accumulated cloud (`lidar: accumulated`) as it stands.
 LidarInspection inspect_lidar_frame(const io::Dataset& dataset, const io::Frame& frame, std::size_t index,
                                     const Calibrator::Params& params) {
   std::printf("lidar   path: %s\n", frame_path(frame, params).c_str());
-  if (!lidar_path(frame.lidar, params).ring_free) return inspect_lidar(frame.lidar, dataset.target(), params);
+  const bool ring_free = lidar_path(frame.lidar, params).ring_free;
+  if (dataset.accumulated() && !frame.lidar_stem.empty()) {
+    std::printf("lidar   accumulated cloud lidar/%s.pcd, detected as it stands\n", frame.lidar_stem.c_str());
+    return ring_free ? inspect_lidar(std::vector<LidarCloud>{frame.lidar}, dataset.target(), params)
+                     : inspect_lidar(frame.lidar, dataset.target(), params);
+  }
+  if (!ring_free) return inspect_lidar(frame.lidar, dataset.target(), params);
   std::vector<LidarCloud> sweeps{frame.lidar};
   for (std::size_t i = index + 1; i < dataset.size() && sweeps.size() < static_cast<std::size_t>(params.ring_free_frames);
        ++i)
