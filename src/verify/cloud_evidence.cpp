@@ -41,7 +41,10 @@ int face_ring_of(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 4>&
 /// given inside it beyond those that came (on the plane or behind it), at
 /// the density of on-plane returns on the face around it. Where the sensor
 /// does not look (a field of view's edge across the hole) the face around
-/// it has no returns either, and nothing is added.
+/// it has no returns either, and nothing is added. The outline band gets
+/// the same at the face's mean density: a cloud cropped to the board, or a
+/// board before open sky, has nothing beyond its edges, where a wall that
+/// continues the plane gives returns as densely as the face.
 void count_missing_returns(const std::array<int, 4>& around, const Target& target,
                            const BoardVerifier::Params& verifier, BoardEvidence& evidence) {
   const double inner = target.hole_radius + verifier.hole_margin;
@@ -52,6 +55,13 @@ void count_missing_returns(const std::array<int, 4>& around, const Target& targe
     const double missing = expected - evidence.hole_open[h] - evidence.hole_blocked[h];
     if (missing > 0.0) evidence.hole_open[h] += static_cast<int>(std::floor(missing));
   }
+  const double density = (around[0] + around[1] + around[2] + around[3]) / (4.0 * ring_area);
+  const double inner_x = 0.5 * target.board_width + verifier.outline_gap;
+  const double inner_y = 0.5 * target.board_height + verifier.outline_gap;
+  const double band_area = 4.0 * ((inner_x + verifier.outline_width) * (inner_y + verifier.outline_width) -
+                                  inner_x * inner_y);
+  const double missing = density * band_area - evidence.outline_open - evidence.outline_blocked;
+  if (missing > 0.0) evidence.outline_open += static_cast<int>(std::floor(missing));
 }
 
 }  // namespace
