@@ -110,14 +110,14 @@ TEST(CalibratorCheck, TransformOneDegreeOrTwoCentimetresOffIsNotOk) {
   }
 }
 
-/// Camera branch reports of every frame, their labels turned by 180 deg: a
-/// camera that sees the board upside down against the lidar.
-std::vector<BranchReport> turned_camera_reports(const Calibrator& calibrator, bool keep_observation) {
+/// Camera branch reports of every frame, their labels turned by 180 deg when
+/// `turned`: a camera that sees the board upside down against the lidar.
+std::vector<BranchReport> camera_reports(const Calibrator& calibrator, bool turned, bool keep_observation) {
   std::vector<BranchReport> reports;
   const HolePermutation half = hole_symmetries(simulator().config().target)[1].permutation;
   for (const auto& frame : frames()) {
     BranchReport report = calibrator.camera_branch(frame.left, frame.right);
-    report.centers = relabel(report.centers, half);
+    if (turned) report.centers = relabel(report.centers, half);
     if (!keep_observation) report.observation.reset();
     reports.push_back(report);
   }
@@ -126,7 +126,7 @@ std::vector<BranchReport> turned_camera_reports(const Calibrator& calibrator, bo
 
 TEST(CalibratorCheck, MirroredCameraLabelsAreTurnedBackByTheScene) {
   Calibrator calibrator(simulator().cameras(), simulator().config().target);
-  const auto reports = turned_camera_reports(calibrator, true);
+  const auto reports = camera_reports(calibrator, true, true);
   for (int i = 0; i < kFrames; ++i) calibrator.add(frames()[i].lidar, reports[i]);
   const auto result = calibrator.result();
   ASSERT_TRUE(result.found) << result.reason;
@@ -137,14 +137,16 @@ TEST(CalibratorCheck, MirroredCameraLabelsAreTurnedBackByTheScene) {
   EXPECT_EQ(result.quality.verdict, Verdict::Ok) << explain(result);
 }
 
-// Nothing but the board: its returns alone, no image edges or stereo depth.
-// The turned fit explains that as well as the other: a clear error.
-TEST(CalibratorCheck, SceneThatCannotTellFailsAsAmbiguous) {
+/// Nothing but the board: its returns alone, no image edges or stereo
+/// depth, the camera's labels turned when `turned`.
+Calibrator::Result calibrate_board_only(bool turned, double upright_deg = 30.0) {
   // The board centre in the lidar frame: the simulator's board pose is in the camera body frame.
   const Eigen::Isometry3d T_lidar_cambody = simulator().config().setting.T_cambody_lidar().inverse();
   const Eigen::Vector3d centre = T_lidar_cambody * simulator().board_pose().T_cambody_board().translation();
-  Calibrator calibrator(simulator().cameras(), simulator().config().target);
-  const auto reports = turned_camera_reports(calibrator, false);
+  Calibrator::Params params = Calibrator::Params::preset("default");
+  params.check.upright_deg = upright_deg;
+  Calibrator calibrator(simulator().cameras(), simulator().config().target, params);
+  const auto reports = camera_reports(calibrator, turned, false);
   for (int i = 0; i < kFrames; ++i) {
     LidarCloud board_only;
     const LidarCloud& sweep = frames()[i].lidar;
@@ -155,13 +157,38 @@ TEST(CalibratorCheck, SceneThatCannotTellFailsAsAmbiguous) {
       }
     calibrator.add(board_only, reports[i]);
   }
-  const auto result = calibrator.result();
+  return calibrator.result();
+}
+
+// The turned fit explains a board alone as well as the other, and stands
+// the lidar upside down against the camera: a clear error.
+TEST(CalibratorCheck, SceneThatCannotTellFailsAsAmbiguous) {
+  const auto result = calibrate_board_only(true);
   ASSERT_TRUE(result.found) << result.reason;
   EXPECT_EQ(result.labels_turned, 0);
   EXPECT_EQ(result.quality.verdict, Verdict::Failed) << explain(result);
   EXPECT_TRUE(result.quality.ambiguous) << explain(result);
+  EXPECT_FALSE(result.quality.upright_only) << explain(result);
   ASSERT_FALSE(result.quality.reasons.empty());
   EXPECT_NE(result.quality.reasons[0].find("ambiguous"), std::string::npos) << result.quality.reasons[0];
+}
+
+// The same board with labels that agree: the scene still cannot tell, but
+// only this fit stands both sensors upright, so the result is suspect (with
+// that reason), not failed; with the mounting prior off it fails.
+TEST(CalibratorCheck, SceneThatCannotTellIsSuspectWhenOnlyOneFitStandsTheSensorsUpright) {
+  const auto result = calibrate_board_only(false);
+  ASSERT_TRUE(result.found) << result.reason;
+  EXPECT_TRUE(accurate(result, simulator().T_lidar_camera())) << explain(result);
+  EXPECT_TRUE(result.quality.ambiguous) << explain(result);
+  EXPECT_TRUE(result.quality.upright_only) << explain(result);
+  EXPECT_EQ(result.quality.verdict, Verdict::Suspect) << explain(result);
+  bool told = false;
+  for (const auto& reason : result.quality.reasons) told |= reason.find("upright") != std::string::npos;
+  EXPECT_TRUE(told) << explain(result);
+
+  const auto without_prior = calibrate_board_only(false, 0.0);
+  EXPECT_EQ(without_prior.quality.verdict, Verdict::Failed) << explain(without_prior);
 }
 
 // A target.yaml 3 % larger or smaller than the board: the camera places the

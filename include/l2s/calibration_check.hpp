@@ -158,6 +158,14 @@ class L2S_EXPORT CalibrationCheck {
     int min_scene_edge_points = 12;   ///< edges off the board needed to align them on their own, >= 1
     double min_prominence = 0.15;     ///< rx and ry must peak at least this far above the scan's median (share of the peak), else suspect, 0..1
     double hypothesis_margin = 0.06;  ///< an alternative needs this much more scene support to be preferred; closer, the result is ambiguous, > 0
+    /// [deg] When the scene cannot tell the transform from a symmetric
+    /// alternative (a board alone, as a solid-state lidar's cloud cropped
+    /// to it), the sensors' mounting still can: a lidar's +z is its up
+    /// (a spinning lidar's axis, REP 103) and an image's rows run down. If
+    /// the lidar's up lies within this angle of the image's up under the
+    /// transform, and at least twice as far under every alternative the
+    /// scene supports as well, the result is suspect, not failed; 0: never.
+    double upright_deg = 30.0;
 
     void validate() const;  ///< throws ParamError naming the field
   };
@@ -220,6 +228,7 @@ class L2S_EXPORT CalibrationCheck {
     HolePermutation relabel{{0, 1, 2, 3}};  ///< camera centroids relabelled this way give it
     Eigen::Isometry3d T_lidar_camera = Eigen::Isometry3d::Identity();
     double residual_rms = 0.0;  ///< [m] its centre fit (when re-registered)
+    double up_angle = 0.0;      ///< [rad] between the lidar's +z and the image's up (-y) under it
     Scores scores;
   };
 
@@ -254,6 +263,10 @@ class L2S_EXPORT CalibrationCheck {
     std::vector<Alternative> alternatives;
     int preferred = -1;      ///< an alternative the scene supports clearly better (index), else -1
     bool ambiguous = false;  ///< an alternative is supported about as well as the checked transform
+    double up_angle = 0.0;   ///< [rad] between the lidar's +z and the image's up (-y) under the checked transform
+    /// Ambiguous, but only the checked transform stands both sensors
+    /// upright (Params::upright_deg): suspect rather than failed.
+    bool upright_only = false;
     int frames = 0;          ///< frames given
     int board_frames = 0;    ///< with board returns and a camera board pose
     int edge_frames = 0;     ///< whose edges were scored

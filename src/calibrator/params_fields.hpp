@@ -267,6 +267,7 @@ void visit(V& v, CalibrationCheck::Params& p) {
   v.field("min_scene_edge_points", p.min_scene_edge_points);
   v.field("min_prominence", p.min_prominence);
   v.field("hypothesis_margin", p.hypothesis_margin);
+  v.field("upright_deg", p.upright_deg);
 }
 
 template <class V>

@@ -80,6 +80,27 @@ void compare_hypotheses(CalibrationCheck::Report& report, double margin) {
   }
 }
 
+/// [rad] Between the lidar's up (+z) and the image's up (-y) under a
+/// transform: 0 for sensors mounted upright, pi for one upside down.
+double up_angle(const Eigen::Isometry3d& T_lidar_camera) {
+  const Eigen::Vector3d lidar_up = T_lidar_camera.linear().transpose() * Eigen::Vector3d::UnitZ();
+  return std::acos(std::clamp(-lidar_up.y(), -1.0, 1.0));
+}
+
+/// Of an ambiguous result: whether the checked transform alone stands both
+/// sensors upright. A turn of the hole pattern about the board's normal
+/// turns the lidar's up about it too, by 180 deg (or 90 on a square
+/// pattern), so an upright mounting leaves one hypothesis near 0.
+bool upright_only(const CalibrationCheck::Report& report, const CalibrationCheck::Params& params) {
+  const double upright = params.upright_deg * M_PI / 180.0;
+  if (!report.ambiguous || !(upright > 0.0) || report.up_angle > upright) return false;
+  for (const auto& alternative : report.alternatives)
+    if (std::abs(alternative.scores.support - report.scores.support) <= params.hypothesis_margin &&
+        alternative.up_angle < 2.0 * upright)
+      return false;
+  return true;
+}
+
 }  // namespace
 
 void CalibrationCheck::Params::validate() const {
@@ -142,6 +163,7 @@ void CalibrationCheck::Params::validate() const {
   if (min_scene_edge_points < 1) throw ParamError("min_scene_edge_points", "must be >= 1");
   if (!(min_prominence >= 0.0 && min_prominence <= 1.0)) throw ParamError("min_prominence", "must be in [0, 1]");
   positive(hypothesis_margin, "hypothesis_margin");
+  if (!(upright_deg >= 0.0 && upright_deg <= 45.0)) throw ParamError("upright_deg", "must be in [0, 45]");
 }
 
 CalibrationCheck::CalibrationCheck(StereoCamera cameras, Target target)
@@ -185,8 +207,11 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
   report.scores = score(scorer, T_camera_lidar, most_seen, view, depth, params_, &at_alignment);
   for (Alternative& alternative : alternatives)
     alternative.scores = score(scorer, alternative.T_lidar_camera.inverse(), most_seen, view, depth, params_);
+  report.up_angle = up_angle(T_lidar_camera);
+  for (Alternative& alternative : alternatives) alternative.up_angle = up_angle(alternative.T_lidar_camera);
   report.alternatives = std::move(alternatives);
   compare_hypotheses(report, params_.hypothesis_margin);
+  report.upright_only = upright_only(report, params_);
 
   if (report.scores.edge_points > 0) {
     const detail::EdgeAlignment alignment =

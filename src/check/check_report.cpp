@@ -84,8 +84,9 @@ std::string describe(const CalibrationCheck::Report& report) {
           << (peak.rotation ? "deg" : "cm ") << line("  (prominence %.2f)\n", peak.prominence);
     }
   }
+  out << line("up         the lidar's +z %.0f deg from the image's up\n", report.up_angle / kDeg);
   for (const auto& alternative : report.alternatives) {
-    out << "alternative '" << alternative.name << "'\n";
+    out << "alternative '" << alternative.name << "'" << line(" (lidar's +z %.0f deg from the image's up)\n", alternative.up_angle / kDeg);
     describe_scores(out, alternative.scores, "  ");
   }
   out << line("time       %.0f ms\n", report.milliseconds);

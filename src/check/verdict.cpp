@@ -193,12 +193,22 @@ void judge_hypotheses(const CalibrationCheck::Report& r, const CalibrationCheck:
                        "): the hole labels of the two sensors disagree by a turn of the pattern");
   } else if (r.ambiguous) {
     std::string names;
+    double nearest_up = M_PI;
     for (const auto& a : r.alternatives)
-      if (std::abs(a.scores.support - r.scores.support) <= p.hypothesis_margin)
+      if (std::abs(a.scores.support - r.scores.support) <= p.hypothesis_margin) {
         names += (names.empty() ? "'" : ", '") + a.name + "' (" + format("%.2f", a.scores.support) + ")";
-    j.failed.push_back("ambiguous: the scene supports " + names + " about as well as this transform (" +
-                       format("%.2f", r.scores.support) +
-                       "); add structure beside the board (a box, a post) or texture behind it");
+        nearest_up = std::min(nearest_up, a.up_angle);
+      }
+    const std::string cannot_tell = "the scene supports " + names + " about as well as this transform (" +
+                                    format("%.2f", r.scores.support) + ")";
+    const std::string remedy = "add structure beside the board (a box, a post) or texture behind it";
+    if (r.upright_only)
+      j.suspect.push_back(cannot_tell + format("; taken because only this one stands both sensors upright (the lidar's "
+                                               "+z %.0f deg from the image's up, %.0f deg or more under the others)",
+                                               r.up_angle / kDeg, nearest_up / kDeg) +
+                          ": if a sensor is mounted rolled or upside down, " + remedy);
+    else
+      j.failed.push_back("ambiguous: " + cannot_tell + "; " + remedy);
   }
 }
 
