@@ -182,6 +182,34 @@ TEST(RandomScene, TheBoardsDrawLeavesTheRestOfTheSceneAsItWas) {
   EXPECT_GT(markers, 0);
 }
 
+// Beyond the classic draw, some solid-state lidars keep their returns as one
+// cloud accumulated over seconds (cropped around the board or not), drawn
+// from a stream of its own: the rest of the scene is as the classic draw's.
+TEST(RandomScene, SomeSolidStateLidarsKeepOneAccumulatedCloud) {
+  // 664592208 draws 4 s of the whole scene, 1795425164 1.6 s cropped, both Mid-360-like.
+  int cropped = 0;
+  for (const std::uint64_t seed : {664592208, 1795425164}) {
+    const RandomScene all = make_random_scene(seed, 1, 1.0, 1, BoardDraw::All);
+    const RandomScene classic = make_random_scene(seed, 1, 1.0, 1, BoardDraw::Classic);
+    SCOPED_TRACE(all.summary);
+    const SimulationConfig& a = all.simulator->config();
+    EXPECT_FALSE(all.simulator->lidar_model().has_rings());
+    EXPECT_GE(a.accumulated_seconds, 1.0);
+    EXPECT_LE(a.accumulated_seconds, 5.0);
+    EXPECT_NE(all.summary.find("accumulated"), std::string::npos);
+    if (a.accumulated_crop > 0.0) {
+      ++cropped;
+      EXPECT_GE(a.accumulated_crop, 0.2);
+      EXPECT_LT(a.accumulated_crop, 0.6);
+    }
+    EXPECT_EQ(classic.simulator->config().accumulated_seconds, 0.0);
+    if (classic.redraws == all.redraws) {  // a board that stands elsewhere may redraw the scene
+      EXPECT_EQ(classic.simulator->config().lidar, a.lidar);
+    }
+  }
+  EXPECT_EQ(cropped, 1);
+}
+
 // The marked boards the stereo branch's marker pose is measured on: every
 // board carries markers, on a level rig with the lidar upright.
 TEST(RandomScene, MarkedScenesCarryMarkersOnALevelRigWithTheLidarUpright) {

@@ -7,6 +7,7 @@
 #include <l2s/error.hpp>
 #include <l2s/sim/board_draw.hpp>
 #include <l2s/sim/camera_scene_draw.hpp>
+#include <l2s/sim/lidar_model.hpp>
 #include <l2s/sim/lidar_scene_draw.hpp>
 #include <l2s/sim/mounting_draw.hpp>
 
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/draw_random.hpp"
 #include "sim/random.hpp"
 
 namespace l2s::sim {
@@ -27,6 +29,7 @@ constexpr std::uint64_t kMarkerStream = 0xA1C0ULL;
 constexpr std::uint64_t kBoardStream = 0xB0A4DULL;
 constexpr std::uint64_t kRigStream = 0x5E7E0ULL;
 constexpr std::uint64_t kMountStream = 0x0A7C4ULL;
+constexpr std::uint64_t kFormStream = 0xACC0ULL;
 constexpr double kNearest = 1.5;             // [m] the lidar draw's nearest board
 constexpr double kMinHolePixels = 10.0;      // [px] hole radius in the image at the farthest board
 constexpr double kMinBoardDisparity = 10.0;  // [px] disparity at the farthest board
@@ -61,6 +64,25 @@ SimulationConfig compose(const CameraSceneDraw& camera, const LidarSceneDraw& li
   config.seed = seed;
   config.threads = threads;
   return config;
+}
+
+/// How a solid-state lidar's returns are kept: half the time as one cloud
+/// accumulated over 1-5 s of the static board (DATASET.md `lidar:
+/// accumulated`, as users of such sensors record it), and of those half
+/// cropped to 0.2-0.6 m around the board, as a user cuts it out by hand.
+void draw_lidar_form(std::mt19937_64& rng, SimulationConfig* config) {
+  if (LidarModel::by_name(config->lidar).has_rings() || !detail::chance(rng, 0.5)) return;
+  config->accumulated_seconds = std::round(detail::uniform(rng, 1.0, 5.0) * 10.0) / 10.0;  // whole sweeps at 10 Hz
+  if (detail::chance(rng, 0.5)) config->accumulated_crop = detail::uniform(rng, 0.2, 0.6);
+}
+
+/// ", accumulated 2.3 s" (", cropped" when cut out around the board), or "".
+std::string lidar_form_summary(const SimulationConfig& config) {
+  if (!(config.accumulated_seconds > 0.0)) return "";
+  char line[64];
+  std::snprintf(line, sizeof line, ", accumulated %.1f s%s", config.accumulated_seconds,
+                config.accumulated_crop > 0.0 ? " cropped" : "");
+  return line;
 }
 
 /// ", board 1.20x0.90 r0.10 on 0.60x0.45" when not the default board, and
@@ -118,6 +140,10 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
     lidar.board_distance = shared_distance(lidar, camera_limit);
     SimulationConfig config = compose(camera, lidar, seed, frames, noise_k, threads);
     config.target = board;
+    if (any_board) {
+      std::mt19937_64 form_rng(detail::hash_counters(seed, kFormStream, static_cast<std::uint64_t>(draw)));
+      draw_lidar_form(form_rng, &config);
+    }
     try {
       scene.simulator = std::make_unique<DatasetSimulator>(config);
     } catch (const Error& error) {  // no board pose satisfies both sensors: draw again
@@ -126,7 +152,7 @@ RandomScene make_random_scene(std::uint64_t seed, int frames, double noise_k, in
     }
     const bool upside_down = std::cos(lidar.lidar_pose.roll) < 0.0;
     scene.summary = camera.summary() + board_summary(board) + " | " + lidar.lidar +
-                    (upside_down ? " upside down" : "") + (lidar.quirks.any() ? " (quirks)" : "") + ", board " +
+                    (upside_down ? " upside down" : "") + (lidar.quirks.any() ? " (quirks)" : "") + lidar_form_summary(config) + ", board " +
                     std::to_string(scene.simulator->board_pose().x).substr(0, 4) + " m";
     return scene;
   }

@@ -109,6 +109,7 @@ struct Run {
   std::string unable;  // why the cell has no calibrator (a mono camera and a board without markers)
   const DatasetSimulator* simulator = nullptr;
   std::optional<Calibrator> calibrator;
+  std::optional<AccumulatedLidar> accumulated;  // a `lidar: accumulated` scene's cloud, detected once
   double seconds = 0.0;
 };
 
@@ -166,6 +167,10 @@ GroupData simulate_group(const SuiteGroup& group, const std::vector<SuiteCell>& 
 
 bool is_mono(const SuiteCell& cell) { return cell.preset == "mono"; }
 
+/// The lidar side is one cloud accumulated over the static board (DATASET.md
+/// `lidar: accumulated`), not a sweep per frame.
+bool accumulated(const DatasetSimulator& simulator) { return simulator.config().accumulated_seconds > 0.0; }
+
 // A calibrator for every cell that has data: the stereo pair with the cell's
 // preset, or for "mono" the left camera alone with the default preset.
 std::vector<Run> start_runs(const std::vector<SuiteCell>& cells, const GroupData& data) {
@@ -197,7 +202,8 @@ void add_frame(int i, const SuiteGroup& group, const GroupData& data, std::vecto
   SimulatedFrame frame = data.source->frame(i);
   std::map<std::string, LidarCloud> sweeps;
   for (const auto& [lidar, simulator] : data.simulators)
-    sweeps[lidar] = simulator.get() == data.source ? std::move(frame.lidar) : simulator->sweep(i);
+    if (!accumulated(*simulator))
+      sweeps[lidar] = simulator.get() == data.source ? std::move(frame.lidar) : simulator->sweep(i);
   // The camera branch once per preset: its parameters are the same for every lidar.
   std::map<std::string, BranchReport> camera;
   for (const Run& run : runs)
@@ -217,8 +223,16 @@ void add_frame(int i, const SuiteGroup& group, const GroupData& data, std::vecto
       evaluations[run.cell].push_back(std::move(row));
       continue;
     }
+    // An accumulated cloud is made once (not timed: it is the data) and
+    // detected once, with the first frame, whose time that counts in.
+    std::optional<LidarCloud> cloud;
+    if (accumulated(*run.simulator) && !run.accumulated) cloud = run.simulator->accumulated_cloud();
     const auto start = Clock::now();
-    run.calibrator->add(sweeps.at(run.cell->lidar), camera.at(run.cell->preset), id);
+    if (cloud) run.accumulated = run.calibrator->detect_accumulated(*cloud);
+    if (run.accumulated)
+      run.calibrator->add(*run.accumulated, camera.at(run.cell->preset), id);
+    else
+      run.calibrator->add(sweeps.at(run.cell->lidar), camera.at(run.cell->preset), id);
     const bool evaluated = run.cell->every_frame || i + 1 == group.frames;
     std::optional<Calibrator::Result> result;
     if (evaluated) result = run.calibrator->result();
