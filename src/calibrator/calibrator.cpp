@@ -105,6 +105,19 @@ struct Calibrator::Impl {
     report.id = id.empty() ? std::to_string(frames.size()) : id;
     ring_free_lidar = ring_free_lidar || ring_free;
     std::shared_ptr<const CameraObservation> camera;  // of another frame of a ring-free window
+    if (ring_free) {
+      // A window this sweep closed at a move of the scene belongs with the
+      // frame before, the last of its pose: there its centres meet the
+      // camera's of that pose. The new window starts with this frame.
+      detail::LidarDetector::WindowClose close = lidar.take_window_close();
+      if (close.restarted) window_camera.reset();
+      if (close.closed && !frames.empty()) {
+        BranchReport& previous = frames.back().lidar;
+        close.closed->milliseconds += previous.milliseconds;
+        close.closed->note = "ring-free window closed at a move of the scene";
+        previous = std::move(*close.closed);
+      }
+    }
     if (check && ring_free) {
       const bool refined = report.camera.found && report.camera.rim_rms_px > 0.0;
       const bool better = !window_camera || (!window_camera->board_pose_refined && refined);

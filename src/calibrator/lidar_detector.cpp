@@ -15,6 +15,10 @@ namespace {
 /// window of all 30 (18.5 mm, 0.35 deg).
 constexpr int kLongestWindow = 2;
 
+/// A window closed at a move is detected when it holds at least this many
+/// sweeps: a single one lies between two moves (the board on its way).
+constexpr int kMinClosedWindow = 2;
+
 double milliseconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -27,7 +31,22 @@ BranchReport LidarDetector::detect(const LidarCloud& sweep, bool ring_free, Lida
   if (!ring_free) {
     report = run_lidar_branch(sweep, *target_, *params_, trace);
   } else {
-    window_.push_back(accumulate_ring_free({&sweep}, *params_));
+    LidarCloud kept = accumulate_ring_free({&sweep}, *params_);
+    closed_.reset();
+    restarted_ = stillness_.compare(kept).moved;
+    if (restarted_) {
+      if (static_cast<int>(window_.size()) >= kMinClosedWindow) {
+        closed_ = detect_window(trace);
+        if (!closed_->found)
+          closed_->reason = "not found in a window of " + std::to_string(window_.size()) +
+                            " sweeps closed at a move of the scene (" + closed_->failed_stage + ": " +
+                            closed_->reason + ")";
+      }
+      window_.clear();
+      stillness_.clear();
+    }
+    stillness_.add(kept);
+    window_.push_back(std::move(kept));
     const auto count = static_cast<int>(window_.size());
     const int first = params_->ring_free_frames;
     const int again = std::max(1, first / 2);
@@ -38,9 +57,7 @@ BranchReport LidarDetector::detect(const LidarCloud& sweep, bool ring_free, Lida
       report.reason = "ring-free sweep " + std::to_string(count) + " of " + std::to_string(first) + " accumulated";
       if (count > first) report.reason += " (a window without the board grows, up to " + std::to_string(longest) + ")";
     } else {
-      std::vector<const LidarCloud*> window;
-      for (const LidarCloud& cloud : window_) window.push_back(&cloud);
-      report = run_ring_free_branch(accumulate_ring_free(window, *params_), *target_, *params_, trace);
+      report = detect_window(trace);
       if (report.found || count >= longest) {
         window_.clear();
       } else {
@@ -56,6 +73,10 @@ BranchReport LidarDetector::detect(const LidarCloud& sweep, bool ring_free, Lida
 
 std::optional<BranchReport> LidarDetector::partial_window(LidarInspection* trace) const {
   if (window_.empty()) return std::nullopt;
+  return detect_window(trace);
+}
+
+BranchReport LidarDetector::detect_window(LidarInspection* trace) const {
   std::vector<const LidarCloud*> window;
   for (const LidarCloud& cloud : window_) window.push_back(&cloud);
   return run_ring_free_branch(accumulate_ring_free(window, *params_), *target_, *params_, trace);

@@ -3,11 +3,14 @@
 // is detected sweep by sweep; a ring-free one (non-repetitive scan) is
 // accumulated over params.ring_free_frames sweeps of the static board and
 // detected once per window (a window without the board grows, up to twice
-// that, before it starts afresh). Shared by every facade with a lidar in it (the
+// that, before it starts afresh). A window holds one pose of the board: when
+// a sweep shows the scene moved (SceneStillness), the window is closed,
+// detected with what it holds, and a new one starts with that sweep. Shared by every facade with a lidar in it (the
 // stereo Calibrator, the LidarPairCalibrator), so each lidar of a rig keeps
 // its own window.
 
 #include "calibrator/branches.hpp"
+#include "calibrator/scene_stillness.hpp"
 
 #include <optional>
 #include <vector>
@@ -33,13 +36,38 @@ class LidarDetector {
   /// Ring-free sweeps waiting in the window.
   int window_size() const { return static_cast<int>(window_.size()); }
 
+  /// What the last detect() did when its sweep showed the scene moved: a new
+  /// window started with that sweep, and the old one (which belongs with
+  /// the sweep before) was detected, if it held enough sweeps.
+  struct WindowClose {
+    bool restarted = false;
+    std::optional<BranchReport> closed;
+  };
+  /// Hands that over once (later calls give nothing until the next move).
+  WindowClose take_window_close() {
+    WindowClose close{restarted_, std::move(closed_)};
+    restarted_ = false;
+    closed_.reset();
+    return close;
+  }
+
   /// Forgets the window being accumulated.
-  void reset() { window_.clear(); }
+  void reset() {
+    window_.clear();
+    stillness_.clear();
+    closed_.reset();
+    restarted_ = false;
+  }
 
  private:
+  BranchReport detect_window(LidarInspection* trace) const;  // the window's sweeps as one cloud
+
   const Target* target_;
   const Calibrator::Params* params_;
   std::vector<LidarCloud> window_;  // ring-free sweeps waiting for a detection (pass-through applied)
+  SceneStillness stillness_;        // the scene since the last move, to tell the next one
+  std::optional<BranchReport> closed_;
+  bool restarted_ = false;
 };
 
 }  // namespace l2s::detail

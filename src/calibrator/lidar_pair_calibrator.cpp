@@ -145,6 +145,19 @@ struct LidarPairCalibrator::Impl {
     planes.back()[s] = board_plane(*partial, trace);
   }
 
+  /// A ring-free window that lidar s's last sweep closed at a move of the
+  /// scene belongs with the frame before, the last of its pose. `trace`
+  /// holds its detection's stages (the new window's first sweep runs none).
+  void take_window_close(int s, const LidarInspection& trace) {
+    detail::LidarDetector::WindowClose close = detector(s).take_window_close();
+    if (!close.closed || !close.closed->found || frames.empty()) return;
+    BranchReport& previous = s == 0 ? frames.back().lidar : frames.back().lidar2;
+    close.closed->milliseconds += previous.milliseconds;
+    close.closed->note = "ring-free window closed at a move of the scene";
+    previous = std::move(*close.closed);
+    planes.back()[s] = board_plane(previous, trace);
+  }
+
   /// Every frame's detections; a ring-free window detected as it stands
   /// counts with the last frame.
   Observations observations() const {
@@ -281,6 +294,7 @@ LidarPairFrameReport LidarPairCalibrator::add(const LidarCloud& lidar, const Lid
     found[0] = detect(0);
     found[1] = detect(1);
   }
+  for (int s = 0; s < 2; ++s) impl.take_window_close(s, traces[s]);
   report.lidar = found[0];
   report.lidar2 = found[1];
   impl.planes.push_back({board_plane(report.lidar, traces[0]), board_plane(report.lidar2, traces[1])});
