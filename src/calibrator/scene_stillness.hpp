@@ -3,11 +3,12 @@
 // (private). A non-repetitive scan looks in other directions in every sweep,
 // so sweeps are compared by direction: each return falls in a cell of
 // azimuth and elevation, and the window keeps the nearest and the farthest
-// range seen in each cell. A return of a new sweep beyond that span (by more
-// than the range noise) sees something that was not there, or no longer
-// sees it: the board moved into or out of that direction. A cell at a depth
-// edge spans both surfaces and accepts either, so the mixed returns at the
-// board's outline and rims do not count as motion.
+// range seen in each cell. A return of a new sweep beyond the span of its
+// cell and the neighbouring ones (by more than the range noise) sees
+// something that was not there, or no longer sees it: the board moved into
+// or out of that direction. Cells at a depth edge span both surfaces and
+// accept either, so the mixed returns at the board's outline and rims do
+// not count as motion.
 
 #include <l2s/types.hpp>
 
