@@ -76,6 +76,25 @@ TEST_P(RingFreePoses, EveryWindowHoldsOnePoseAndEveryPoseIsFound) {
   EXPECT_LT(error.rotation, 0.4 * M_PI / 180.0) << describe(result.quality);
 }
 
+// Three sweeps of a Mid-360-like lidar leave the board's points too far
+// apart for its holes: no result, and the reason says how many sweeps of
+// the still board it takes.
+TEST(RingFreeWindow, ABoardScannedTooBrieflySaysHowManySweepsItTakes) {
+  sim::SimulationConfig config = sim::SimulationConfig::paper(1, "mid360");
+  config.frames = 3;
+  config.seed = 11;
+  const sim::DatasetSimulator simulator(config);
+  Calibrator calibrator(simulator.cameras(), config.target);
+  for (int i = 0; i < config.frames; ++i) {
+    const sim::SimulatedFrame frame = simulator.frame(i);
+    calibrator.add(frame.lidar, frame.left, frame.right);
+  }
+  const auto result = calibrator.result();
+  EXPECT_FALSE(result.found);
+  EXPECT_NE(result.reason.find("the ring-free window of the last 3 sweep(s)"), std::string::npos) << result.reason;
+  EXPECT_NE(result.reason.find("hold it still for"), std::string::npos) << result.reason;
+}
+
 // An Avia-like lidar: 2.8 mm, 0.04 deg. A Mid-360-like one's second of
 // returns (about 25,000 around the board) is too sparse for the detector
 // yet: its windows close at the moves, and are not found.

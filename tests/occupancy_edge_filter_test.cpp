@@ -126,10 +126,12 @@ TEST(OccupancyEdgeFilter, ABoardScannedTooBrieflySaysToAccumulateLonger) {
   const auto result = filter_board(points, scene);
   EXPECT_FALSE(result.found);
   EXPECT_NE(result.reason.find("accumulate at least"), std::string::npos) << result.reason;
+  EXPECT_GT(result.sparse_factor, 1.0);
   // A densely scanned board never gets that advice.
   const auto dense = random_scan(scene, 60000, 0.02, 4);
   const auto found = filter_board(dense, scene);
   EXPECT_EQ(found.reason.find("accumulate at least"), std::string::npos) << found.reason;
+  EXPECT_EQ(found.sparse_factor, 0.0);
 }
 
 TEST(OccupancyEdgeFilter, RejectsInvalidParamsNamingTheField) {

@@ -40,6 +40,10 @@ class L2S_EXPORT OccupancyEdgeFilter {
     std::vector<Eigen::Vector3d> edges;  ///< [m] rim points, sensor frame (board returns)
     std::size_t board_points = 0;        ///< board points used
     double cell = 0.0;                   ///< [m] occupancy cell
+    /// When no hole was found and the board's points lie too far apart to
+    /// show holes of the target's radius: how many times as many points
+    /// (sweeps of the static board) it takes, > 1; else 0.
+    double sparse_factor = 0.0;
     /// Places found deep enough and surrounded by board, and those the hole
     /// pattern predicts that show a rim arc.
     int holes = 0;

@@ -183,7 +183,8 @@ struct Calibrator::Impl {
       return result;
     }
     std::optional<HoleCenters> late_lidar;
-    if (const auto partial = lidar.partial_window(); partial && partial->found) {
+    const std::optional<BranchReport> partial = lidar.partial_window();
+    if (partial && partial->found) {
       late_lidar = partial->centers;
       ++result.lidar_frames;
     }
@@ -195,6 +196,10 @@ struct Calibrator::Impl {
       else
         reason << "too few frames gave four centres: lidar " << result.lidar_frames << ", camera "
                << result.camera_frames << " of " << result.frames_added << " (need " << needed << ")";
+      // The ring-free window still open says why it has no centres (a board
+      // scanned too briefly: how many sweeps it takes).
+      if (partial && !partial->found)
+        reason << "; the ring-free window of the last " << lidar.window_size() << " sweep(s): " << partial->reason;
       result.reason = reason.str();
       return result;
     }

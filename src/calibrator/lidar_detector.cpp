@@ -1,6 +1,7 @@
 #include "calibrator/lidar_detector.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 
 namespace l2s::detail {
@@ -79,7 +80,18 @@ std::optional<BranchReport> LidarDetector::partial_window(LidarInspection* trace
 BranchReport LidarDetector::detect_window(LidarInspection* trace) const {
   std::vector<const LidarCloud*> window;
   for (const LidarCloud& cloud : window_) window.push_back(&cloud);
-  return run_ring_free_branch(accumulate_ring_free(window, *params_), *target_, *params_, trace);
+  LidarInspection own_trace;
+  LidarInspection& stages = trace ? *trace : own_trace;
+  BranchReport report = run_ring_free_branch(accumulate_ring_free(window, *params_), *target_, *params_, &stages);
+  // A board whose points lie too far apart for its holes needs a longer
+  // still stand, which the user can give: say how long in sweeps.
+  if (!report.found && stages.occupancy && stages.occupancy->sparse_factor > 1.0) {
+    const auto sweeps = static_cast<int>(window_.size());
+    const int needed = static_cast<int>(std::ceil(stages.occupancy->sparse_factor * sweeps));
+    report.reason += "; the window held " + std::to_string(sweeps) + " sweep(s) of the static board: hold it still for " +
+                     std::to_string(needed) + " sweeps or more";
+  }
+  return report;
 }
 
 }  // namespace l2s::detail

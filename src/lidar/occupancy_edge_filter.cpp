@@ -259,6 +259,7 @@ OccupancyEdgeFilter::Result OccupancyEdgeFilter::filter(const std::vector<Eigen:
     const double widest_spacing = params_.max_cell / params_.cell_factor;
     if (spacing > widest_spacing) {
       const double more = std::pow(spacing / widest_spacing, 2);
+      result.sparse_factor = more;
       reason.precision(1);
       reason << std::fixed << " (the board's points are " << spacing * 1e3 << " mm apart on average, too sparse for "
              << "holes of radius " << target.hole_radius * 1e3 << " mm: accumulate at least " << more
