@@ -1,8 +1,8 @@
 #include "calibrator/lidar_detector.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 
 namespace l2s::detail {
 namespace {
