@@ -111,12 +111,9 @@ struct Calibrator::Impl {
       // camera's of that pose. The new window starts with this frame.
       detail::LidarDetector::WindowClose close = lidar.take_window_close();
       if (close.restarted) window_camera.reset();
-      if (close.closed && !frames.empty()) {
-        BranchReport& previous = frames.back().lidar;
-        close.closed->milliseconds += previous.milliseconds;
-        close.closed->note = "ring-free window closed at a move of the scene";
-        previous = std::move(*close.closed);
-      }
+      if (close.closed && !frames.empty())
+        detail::LidarDetector::place_window(std::move(*close.closed), "ring-free window closed at a move of the scene",
+                                            frames.back().lidar);
     }
     if (check && ring_free) {
       const bool refined = report.camera.found && report.camera.rim_rms_px > 0.0;

@@ -13,6 +13,8 @@
 #include "calibrator/scene_stillness.hpp"
 
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace l2s::detail {
@@ -57,6 +59,14 @@ class LidarDetector {
     stillness_.clear();
     closed_.reset();
     restarted_ = false;
+  }
+
+  /// Puts a window's detection on the report of the frame it belongs with
+  /// (the last sweep of its pose), whose time it adds to.
+  static void place_window(BranchReport detection, const std::string& note, BranchReport& frame) {
+    detection.milliseconds += frame.milliseconds;
+    detection.note = note;
+    frame = std::move(detection);
   }
 
  private:

@@ -138,11 +138,7 @@ struct LidarPairCalibrator::Impl {
     if (2 * d.window_size() >= params.ring_free_frames && !frames.empty()) partial = d.partial_window(&trace);
     d.reset();
     if (!partial || !partial->found) return;
-    BranchReport& previous = s == 0 ? frames.back().lidar : frames.back().lidar2;
-    partial->milliseconds += previous.milliseconds;
-    partial->note = "ring-free window closed early: the other lidar saw the board move";
-    previous = *partial;
-    planes.back()[s] = board_plane(*partial, trace);
+    place_window(s, std::move(*partial), "ring-free window closed early: the other lidar saw the board move", trace);
   }
 
   /// A ring-free window that lidar s's last sweep closed at a move of the
@@ -151,10 +147,13 @@ struct LidarPairCalibrator::Impl {
   void take_window_close(int s, const LidarInspection& trace) {
     detail::LidarDetector::WindowClose close = detector(s).take_window_close();
     if (!close.closed || !close.closed->found || frames.empty()) return;
+    place_window(s, std::move(*close.closed), "ring-free window closed at a move of the scene", trace);
+  }
+
+  /// Lidar s's window detection on the last frame, with its board plane.
+  void place_window(int s, BranchReport detection, const std::string& note, const LidarInspection& trace) {
     BranchReport& previous = s == 0 ? frames.back().lidar : frames.back().lidar2;
-    close.closed->milliseconds += previous.milliseconds;
-    close.closed->note = "ring-free window closed at a move of the scene";
-    previous = std::move(*close.closed);
+    detail::LidarDetector::place_window(std::move(detection), note, previous);
     planes.back()[s] = board_plane(previous, trace);
   }
 

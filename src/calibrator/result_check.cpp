@@ -137,7 +137,6 @@ void check_result(Calibrator::Result& result, const std::vector<CheckFrame>& kep
     report.alternatives.clear();
     report.preferred = -1;
     report.ambiguous = false;
-    report.upright_only = false;
   } else if (report.preferred >= 0 &&
       adopt(result, report.alternatives[report.preferred], report.scores.support, params, camera_range)) {
     const double milliseconds = report.milliseconds;

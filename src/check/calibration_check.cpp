@@ -87,20 +87,6 @@ double up_angle(const Eigen::Isometry3d& T_lidar_camera) {
   return std::acos(std::clamp(-lidar_up.y(), -1.0, 1.0));
 }
 
-/// Of an ambiguous result: whether the checked transform alone stands both
-/// sensors upright. A turn of the hole pattern about the board's normal
-/// turns the lidar's up about it too, by 180 deg (or 90 on a square
-/// pattern), so an upright mounting leaves one hypothesis near 0.
-bool upright_only(const CalibrationCheck::Report& report, const CalibrationCheck::Params& params) {
-  const double upright = params.upright_deg * M_PI / 180.0;
-  if (!report.ambiguous || !(upright > 0.0) || report.up_angle > upright) return false;
-  for (const auto& alternative : report.alternatives)
-    if (std::abs(alternative.scores.support - report.scores.support) <= params.hypothesis_margin &&
-        alternative.up_angle < 2.0 * upright)
-      return false;
-  return true;
-}
-
 }  // namespace
 
 void CalibrationCheck::Params::validate() const {
@@ -211,7 +197,6 @@ CalibrationCheck::Report CalibrationCheck::check(const std::vector<CheckFrame>& 
   for (Alternative& alternative : alternatives) alternative.up_angle = up_angle(alternative.T_lidar_camera);
   report.alternatives = std::move(alternatives);
   compare_hypotheses(report, params_.hypothesis_margin);
-  report.upright_only = upright_only(report, params_);
 
   if (report.scores.edge_points > 0) {
     const detail::EdgeAlignment alignment =

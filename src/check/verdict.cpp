@@ -185,6 +185,20 @@ void judge_edges(const CalibrationCheck::Report& r, const CalibrationCheck::Para
                           format(" (prominence %.2f)", r.peaks[k].prominence));
 }
 
+/// Of an ambiguous result: whether the checked transform alone stands both
+/// sensors upright. A turn of the hole pattern about the board's normal
+/// turns the lidar's up about it too, by 180 deg (or 90 on a square
+/// pattern), so an upright mounting leaves one hypothesis near 0.
+bool upright_only(const CalibrationCheck::Report& report, const CalibrationCheck::Params& params) {
+  const double upright = params.upright_deg * kDeg;
+  if (!report.ambiguous || !(upright > 0.0) || report.up_angle > upright) return false;
+  for (const auto& alternative : report.alternatives)
+    if (std::abs(alternative.scores.support - report.scores.support) <= params.hypothesis_margin &&
+        alternative.up_angle < 2.0 * upright)
+      return false;
+  return true;
+}
+
 void judge_hypotheses(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, Judgement& j) {
   if (r.preferred >= 0) {
     const auto& a = r.alternatives[r.preferred];
@@ -216,6 +230,7 @@ void judge_hypotheses(const CalibrationCheck::Report& r, const CalibrationCheck:
 
 void judge(CalibrationCheck::Report& report, const CalibrationCheck::Params& params, double fx, BoardEvidence board) {
   Judgement j;
+  report.upright_only = upright_only(report, params);
   if (report.board_frames == 0 && report.edge_frames == 0) {
     j.failed.push_back("no frame holds the evidence: lidar board returns with a camera board pose, or image edges");
   } else {

@@ -14,6 +14,21 @@ namespace l2s::io {
 std::string to_string(ImageKind images) { return images == ImageKind::Raw ? "raw" : "rectified"; }
 std::string to_string(LidarForm lidar) { return lidar == LidarForm::Accumulated ? "accumulated" : "sweeps"; }
 
+namespace {
+
+/// Whether `key` holds `other` rather than `usual` (its value when absent);
+/// any third value is an error naming both.
+bool reads_other(const YAML::Node& root, const char* key, const char* usual, const char* other,
+                 const std::string& path) {
+  if (!yaml::has_key(root, key)) return false;
+  const std::string value = yaml::read_string(root, key, path);
+  if (value != usual && value != other)
+    throw FileError(path, std::string(key) + ": '" + value + "' is neither " + usual + " nor " + other);
+  return value == other;
+}
+
+}  // namespace
+
 DatasetInfo read_dataset_info(const std::string& path) {
   const YAML::Node root = yaml::load_file(path);
   DatasetInfo info;
@@ -25,20 +40,8 @@ DatasetInfo read_dataset_info(const std::string& path) {
     const std::string key = entry.first.Scalar();
     if (key != "images" && key != "lidar") throw FileError(path, "unknown key '" + key + "' (known: images, lidar)");
   }
-  if (yaml::has_key(root, "images")) {
-    const std::string value = yaml::read_string(root, "images", path);
-    if (value == "raw")
-      info.images = ImageKind::Raw;
-    else if (value != "rectified")
-      throw FileError(path, "images: '" + value + "' is neither rectified nor raw");
-  }
-  if (yaml::has_key(root, "lidar")) {
-    const std::string value = yaml::read_string(root, "lidar", path);
-    if (value == "accumulated")
-      info.lidar = LidarForm::Accumulated;
-    else if (value != "sweeps")
-      throw FileError(path, "lidar: '" + value + "' is neither sweeps nor accumulated");
-  }
+  if (reads_other(root, "images", "rectified", "raw", path)) info.images = ImageKind::Raw;
+  if (reads_other(root, "lidar", "sweeps", "accumulated", path)) info.lidar = LidarForm::Accumulated;
   return info;
 }
 
