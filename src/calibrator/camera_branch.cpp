@@ -397,6 +397,52 @@ void choose_between(CameraAttempt&& stereo, CameraAttempt&& marked, const std::s
                                          : "not the same board; the markers won, their ids tie them to the target");
 }
 
+/// The board's pose from its markers, refined on its rims in both images
+/// and verified there: the stereo search would only find the same board
+/// again or lose to the markers' ids, so no disparity is matched at all.
+/// The calibration check then has no stereo depth of this frame, as for a
+/// board the stereo search did not confirm: a pair's disparity counts as the
+/// board's depth only where the search found the board where the markers did.
+void take_board_of_markers_alone(CameraAttempt&& marked, const std::string& marker_how, const Target& target,
+                                 BranchReport& report, CameraInspection& t) {
+  take_marker_board(std::move(marked), target, report, t);
+  report.note = "the markers gave the pose, refined on the rims (" + marker_how + "); no stereo matching";
+}
+
+/// The board looked for in the stereo cloud (candidate planes, each verified
+/// in turn), beside the markers' pose when they gave one that their rims did
+/// not confirm.
+void search_stereo_cloud(const CameraFrame& f, std::optional<CameraAttempt> marked, const std::string& marker_how,
+                         BranchReport& report, CameraInspection& t) {
+  const Target& target = f.target;
+  const PlaneSegmenter::Result* planes = find_candidates(f, t, report);
+  std::optional<std::shared_ptr<CameraAttempt>> found;
+  if (planes) {
+    CameraHypothesisTester tester(f, *planes, t.located ? &*t.located : nullptr, &t.cloud);
+    found = search_hypotheses<std::shared_ptr<CameraAttempt>>(*planes, BoardVerifier(f.params.camera_verifier),
+                                                              t.hypotheses, tester);
+    report.hypotheses = static_cast<int>(t.hypotheses.size());
+    if (!found) {
+      if (tester.first()) keep_stages(t, std::move(*tester.first()));
+      report = fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
+    }
+  }
+  if (found && marked) {
+    choose_between(std::move(**found), std::move(*marked), marker_how, target, report, t);
+  } else if (found) {
+    take_stereo_board(std::move(**found), report, t);
+    if (!marker_how.empty()) report.note += (report.note.empty() ? "" : "; ") + ("markers: " + marker_how);
+  } else if (marked) {
+    report.failed_stage.clear();
+    report.reason.clear();
+    take_marker_board(std::move(*marked), target, report, t);
+    report.note = "no board in the stereo cloud; its markers gave the pose (" + marker_how + ")";
+    drop_stereo_depth(t);
+  } else {
+    if (!marker_how.empty()) report.reason += "; markers: " + marker_how;
+  }
+}
+
 }  // namespace
 
 CameraSetup::CameraSetup(const StereoCamera& given) : cameras(given) {
@@ -425,33 +471,12 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   std::optional<CameraAttempt> marked;
   std::string marker_how;
   if (target.markers && params.board_from_markers) marked = board_from_markers(frame, marker_how);
-  const PlaneSegmenter::Result* planes = find_candidates(frame, t, report);
-  std::optional<std::shared_ptr<CameraAttempt>> found;
-  if (planes) {
-    CameraHypothesisTester tester(frame, *planes, t.located ? &*t.located : nullptr, &t.cloud);
-    found = search_hypotheses<std::shared_ptr<CameraAttempt>>(*planes, BoardVerifier(params.camera_verifier),
-                                                              t.hypotheses, tester);
-    report.hypotheses = static_cast<int>(t.hypotheses.size());
-    if (!found) {
-      if (tester.first()) keep_stages(t, std::move(*tester.first()));
-      report = fail(report, t.hypotheses.front().stage.c_str(), describe_failed_search(t.hypotheses));
-    }
-  }
-  if (found && marked) {
-    choose_between(std::move(**found), std::move(*marked), marker_how, target, report, t);
-  } else if (found) {
-    take_stereo_board(std::move(**found), report, t);
-    if (!marker_how.empty()) report.note += (report.note.empty() ? "" : "; ") + ("markers: " + marker_how);
-  } else if (marked) {
-    report.failed_stage.clear();
-    report.reason.clear();
-    take_marker_board(std::move(*marked), target, report, t);
-    report.note = "no board in the stereo cloud; its markers gave the pose (" + marker_how + ")";
-    drop_stereo_depth(t);
+  if (marked && marked->refined) {
+    take_board_of_markers_alone(std::move(*marked), marker_how, target, report, t);
   } else {
-    if (!marker_how.empty()) report.reason += "; markers: " + marker_how;
-    return report;
+    search_stereo_cloud(frame, std::move(marked), marker_how, report, t);
   }
+  if (!report.found) return report;
   if (setup.rectifier) {
     const Eigen::Isometry3d T_camera_rect = setup.rectifier->T_rect_camera().inverse();
     for (Eigen::Vector3d& c : report.centers) c = T_camera_rect * c;
