@@ -71,6 +71,14 @@ class L2S_EXPORT StereoBoardLocator {
   Result locate(const Image& left, const Image& right, const StereoCamera& cameras, const Target& target,
                 const StereoMatcher::Params& stereo, const PassThroughFilter::Params& pass_through) const;
 
+  /// The coarse pass alone: the whole frame's disparity and, after
+  /// pass-through, its cloud, at the scale locate() works at; no candidates
+  /// (found stays false). For a caller that knows where the board is (its
+  /// markers gave it) and wants the frame's depth only. Arguments and throws
+  /// as locate().
+  Result match_coarse(const Image& left, const Image& right, const StereoCamera& cameras, const Target& target,
+                      const StereoMatcher::Params& stereo, const PassThroughFilter::Params& pass_through) const;
+
  private:
   Params params_;
 };

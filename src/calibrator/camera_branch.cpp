@@ -1,5 +1,6 @@
 #include "calibrator/branches.hpp"
 #include "calibrator/camera_attempt.hpp"
+#include "calibrator/marker_depth_agreement.hpp"
 
 #include "camera/cv_image.hpp"
 #include "camera/stereo_cloud_subset.hpp"
@@ -399,14 +400,26 @@ void choose_between(CameraAttempt&& stereo, CameraAttempt&& marked, const std::s
 
 /// The board's pose from its markers, refined on its rims in both images
 /// and verified there: the stereo search would only find the same board
-/// again or lose to the markers' ids, so no disparity is matched at all.
-/// The calibration check then has no stereo depth of this frame, as for a
-/// board the stereo search did not confirm: a pair's disparity counts as the
-/// board's depth only where the search found the board where the markers did.
-void take_board_of_markers_alone(CameraAttempt&& marked, const std::string& marker_how, const Target& target,
+/// again or lose to the markers' ids, so the pair is matched only at the
+/// coarse scale, for the calibration check's depth of the whole scene. That
+/// depth stays evidence only where it shows the board where the markers do
+/// (a plain face or wall, or a short baseline, can tilt it by degrees).
+void take_board_of_markers_alone(CameraAttempt&& marked, const std::string& marker_how, const CameraFrame& f,
                                  BranchReport& report, CameraInspection& t) {
-  take_marker_board(std::move(marked), target, report, t);
-  report.note = "the markers gave the pose, refined on the rims (" + marker_how + "); no stereo matching";
+  const Eigen::Isometry3d T_camera_board = marked.refined->T_camera_board;
+  take_marker_board(std::move(marked), f.target, report, t);
+  report.note = "the markers gave the pose, refined on the rims (" + marker_how + "); no stereo search";
+  auto& coarse = t.located.emplace(StereoBoardLocator(f.params.locator)
+                                       .match_coarse(f.left, f.right, f.cameras, f.target, f.params.stereo,
+                                                     f.params.camera_pass_through));
+  if (!coarse.stereo.found) {
+    drop_stereo_depth(t);
+    return;
+  }
+  const MarkerDepthAgreement agreement = marker_depth_agreement(coarse.cloud, T_camera_board, f.target);
+  coarse.reason = "no regions searched: the markers located the board";
+  report.note += "; " + agreement.summary + (agreement.agrees ? ": kept for the check" : ": not the check's evidence");
+  if (!agreement.agrees) drop_stereo_depth(t);
 }
 
 /// The board looked for in the stereo cloud (candidate planes, each verified
@@ -472,7 +485,7 @@ BranchReport run_camera_branch(const Image& raw_left, const Image& raw_right, co
   std::string marker_how;
   if (target.markers && params.board_from_markers) marked = board_from_markers(frame, marker_how);
   if (marked && marked->refined) {
-    take_board_of_markers_alone(std::move(*marked), marker_how, target, report, t);
+    take_board_of_markers_alone(std::move(*marked), marker_how, frame, report, t);
   } else {
     search_stereo_cloud(frame, std::move(marked), marker_how, report, t);
   }

@@ -59,10 +59,10 @@ StereoBoardLocator::StereoBoardLocator() : StereoBoardLocator(Params{}) {}
 
 StereoBoardLocator::StereoBoardLocator(Params params) : params_(std::move(params)) { params_.validate(); }
 
-StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const Image& right,
-                                                      const StereoCamera& cameras, const Target& target,
-                                                      const StereoMatcher::Params& stereo,
-                                                      const PassThroughFilter::Params& pass_through) const {
+StereoBoardLocator::Result StereoBoardLocator::match_coarse(const Image& left, const Image& right,
+                                                            const StereoCamera& cameras, const Target& target,
+                                                            const StereoMatcher::Params& stereo,
+                                                            const PassThroughFilter::Params& pass_through) const {
   target.validate();
   detail::check_stereo_images(left, right, cameras);
   Result result;
@@ -83,6 +83,16 @@ StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const I
   }
   result.pass_through = PassThroughFilter(pass_through).filter(result.stereo.cloud.points);
   result.cloud = subset(result.stereo.cloud, result.pass_through.kept);
+  return result;
+}
+
+StereoBoardLocator::Result StereoBoardLocator::locate(const Image& left, const Image& right,
+                                                      const StereoCamera& cameras, const Target& target,
+                                                      const StereoMatcher::Params& stereo,
+                                                      const PassThroughFilter::Params& pass_through) const {
+  Result result = match_coarse(left, right, cameras, target, stereo, pass_through);
+  if (!result.stereo.found) return result;
+  const double board_short = std::min(target.board_width, target.board_height);
   PlaneSegmenter::Params plane = params_.plane;
   plane.depth_noise = result.stereo.depth_noise;
   result.plane = PlaneSegmenter(plane).segment(result.cloud.points, target);
