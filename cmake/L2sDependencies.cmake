@@ -35,3 +35,16 @@ endif()
 function(l2s_link_pcl target)
   target_link_libraries(${target} PRIVATE pcl_common pcl_io)
 endfunction()
+
+# The recording readers (l2scalib::recording) decompress ROS 1 bag chunks with
+# bzip2 and lz4. Linked by path, not as imported targets: a static build's
+# export then names the libraries themselves.
+if(L2SCALIB_BUILD_RECORDING)
+  find_package(BZip2 REQUIRED)
+  find_path(L2S_LZ4_INCLUDE_DIR lz4frame.h)
+  find_library(L2S_LZ4_LIBRARY NAMES lz4)
+  if(NOT L2S_LZ4_INCLUDE_DIR OR NOT L2S_LZ4_LIBRARY)
+    message(FATAL_ERROR "l2scalib::recording needs lz4 (Debian: liblz4-dev; scripts/setup.sh installs it), "
+                        "or -DL2SCALIB_BUILD_RECORDING=OFF")
+  endif()
+endif()

@@ -1,5 +1,5 @@
 # Installs the headers and a relocatable CMake package: another project writes
-# find_package(l2scalib [COMPONENTS sim suite viz pcl]) and links
+# find_package(l2scalib [COMPONENTS sim suite viz pcl recording]) and links
 # l2scalib::l2scalib (and l2scalib::sim, ...). Each component has its own
 # export file, loaded only when asked for, so that l2scalib::pcl's need for
 # PCL reaches only the projects that use it.
@@ -14,6 +14,9 @@ if(NOT L2SCALIB_BUILD_SIM)
 endif()
 if(NOT L2SCALIB_BUILD_VIZ)
   list(APPEND l2s_header_excludes PATTERN viz EXCLUDE)
+endif()
+if(NOT L2SCALIB_BUILD_RECORDING)
+  list(APPEND l2s_header_excludes PATTERN recording EXCLUDE)
 endif()
 if(NOT L2SCALIB_WITH_PCL)
   list(APPEND l2s_header_excludes PATTERN adapters EXCLUDE)

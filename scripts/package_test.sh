@@ -6,7 +6,7 @@
 #   static      find_package(l2scalib) of a static install of the core
 #               library alone (build-static/); the consumer needs no
 #               libl2scalib at run time
-#   components  find_package(l2scalib COMPONENTS sim pcl), and the examples
+#   components  find_package(l2scalib COMPONENTS sim pcl recording), and the examples
 #               built outside (03 feeds pcl::PointCloud sweeps to the Calibrator)
 #   subproject  add_subdirectory of the source tree (the core alone), which
 #               must leave its parent's settings alone and build no tests,
@@ -52,7 +52,7 @@ echo "package: static"
 cmake -S . -B build-static -DCMAKE_BUILD_TYPE=Release -DL2SCALIB_BUILD_SHARED=OFF \
   -DL2SCALIB_BUILD_TESTS=OFF -DL2SCALIB_BUILD_BENCHMARKS=OFF -DL2SCALIB_BUILD_EXAMPLES=OFF \
   -DL2SCALIB_BUILD_TOOLS=OFF -DL2SCALIB_BUILD_SIM=OFF -DL2SCALIB_BUILD_VIZ=OFF \
-  -DL2SCALIB_BUILD_PCL=OFF >/dev/null
+  -DL2SCALIB_BUILD_PCL=OFF -DL2SCALIB_BUILD_RECORDING=OFF >/dev/null
 cmake --build build-static -j "$jobs" >/dev/null
 cmake --install build-static --prefix "$work/static" >/dev/null
 consumer static -DCMAKE_PREFIX_PATH="$work/static"
@@ -61,8 +61,8 @@ if needed build-consumer-static/consumer | grep -q l2scalib; then
   exit 1
 fi
 
-echo "package: components sim pcl, and the examples outside"
-consumer components -DCMAKE_PREFIX_PATH="$work/shared" -DL2S_COMPONENTS="sim;pcl"
+echo "package: components sim pcl recording, and the examples outside"
+consumer components -DCMAKE_PREFIX_PATH="$work/shared" -DL2S_COMPONENTS="sim;pcl;recording"
 cmake -S examples -B build-examples-outside -DCMAKE_PREFIX_PATH="$work/shared" -DCMAKE_BUILD_TYPE=Release \
   "${launcher[@]}" >/dev/null
 cmake --build build-examples-outside -j "$jobs" >/dev/null

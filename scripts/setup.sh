@@ -8,6 +8,8 @@ packages=(
   mold  # the linker (cmake/L2sLinker.cmake): links the programs several times faster than ld.bfd
   libeigen3-dev libpcl-dev libopencv-dev libopencv-contrib-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libbz2-dev liblz4-dev  # l2scalib::recording: ROS 1 bag chunks
+  python3-rosbag  # ros1_bag_test: bags written by ROS's own writer
   clang libclang-rt-14-dev  # scripts/sanitize.sh and scripts/fuzz.sh: sanitizers and libFuzzer
   python3 python3-yaml python3-matplotlib  # dataset checker and the suite's plots
 )
