@@ -13,10 +13,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+
+#include <sys/wait.h>  // WEXITSTATUS of the l2s tool's run
 
 namespace {
 
@@ -272,5 +276,40 @@ TEST(Ros1Bag, AFileThatIsNotABagOrHasNoIndexIsNamed) {
   std::ofstream(ros2) << "#ROSBAG V1.2\nabcdefgh";
   EXPECT_NE(file_error([&] { l2s::Ros1Bag bag(ros2); }).find("only version 2.0"), std::string::npos);
 }
+
+#ifdef L2S_TOOL
+/// Runs `command` through the shell; its exit code and what it printed (stdout and stderr).
+std::pair<int, std::string> run(const std::string& command) {
+  std::string output;
+  std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (pipe && std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST(L2sInfo, ListsARecordingsTopicsAndFailsOnATruncatedOneWithOneLine) {
+  const l2s::test::TempDir dir;
+  const std::string path = dir.file("sweeps.bag");
+  l2s::test::write_ros1_bag(path, recording(), "lz4");
+  const auto [code, text] = run(std::string(L2S_TOOL) + " info " + path);
+  EXPECT_EQ(code, 0) << text;
+  EXPECT_NE(text.find("/velodyne_points"), std::string::npos) << text;
+  EXPECT_NE(text.find("sensor_msgs/PointCloud2"), std::string::npos) << text;
+  EXPECT_NE(text.find("3 messages, 10.00 Hz"), std::string::npos) << text;
+  EXPECT_NE(text.find("fields: x float32, y float32, z float32, intensity float32, ring uint16, time float32"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("/stereo/left/image_raw"), std::string::npos) << text;
+
+  const std::string bytes = l2s::test::read_bytes(path);
+  const std::string cut = dir.file("cut.bag");
+  l2s::test::write_text(cut, bytes.substr(0, bytes.size() / 2));
+  const auto [failed, message] = run(std::string(L2S_TOOL) + " info " + cut);
+  EXPECT_EQ(failed, 1) << message;
+  EXPECT_EQ(message.rfind("l2s: error: " + cut + ": truncated", 0), 0u) << message;
+  EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
+}
+#endif
 
 }  // namespace

@@ -40,6 +40,11 @@ struct LidarPairRun {
 int calibrate_lidar_pair(const io::Dataset& dataset, const LidarPairRun& run);
 
 // Inputs several sub-commands share (command_inputs.cpp).
+/// Whether `path` is a file that starts as a ROS bag does (recording_info.cpp).
+bool is_ros1_bag(const std::string& path);
+/// `l2s info RECORDING` on a ROS 1 bag; the exit code.
+int print_recording_info(const std::string& path);
+
 /// Opens a dataset and prints its warnings to stderr.
 io::Dataset open_dataset_warning(const std::string& folder);
 /// The params of --params FILE when given, else of --preset NAME.

@@ -1,4 +1,5 @@
-// l2s info DATASET: what a dataset folder holds, checked as the calibrator reads it.
+// l2s info DATASET: what a dataset folder holds, checked as the calibrator reads it
+// (a ROS 1 bag instead: recording_info.cpp).
 
 #include "commands.hpp"
 
@@ -130,13 +131,15 @@ int print_info(const std::string& folder, bool load_all) {
 }  // namespace
 
 void add_info_command(CLI::App& app, Runner& runner) {
-  auto* command = app.add_subcommand("info", "Summarise a dataset folder (DATASET.md)");
+  auto* command = app.add_subcommand("info", "Summarise a dataset folder (DATASET.md) or a recording (ROS 1 bag)");
   auto folder = std::make_shared<std::string>();
   auto load_all = std::make_shared<bool>(false);
-  command->add_option("dataset", *folder, "dataset folder")->required();
+  command->add_option("dataset", *folder, "dataset folder, or a recording: a ROS 1 .bag file")->required();
   command->add_flag("--all", *load_all, "load every frame, not only the first");
   command->callback([&runner, folder, load_all] {
-    runner = [folder, load_all] { return print_info(*folder, *load_all); };
+    runner = [folder, load_all] {
+      return is_ros1_bag(*folder) ? print_recording_info(*folder) : print_info(*folder, *load_all);
+    };
   });
 }
 
