@@ -6,7 +6,7 @@
 
 #include <l2s/error.hpp>
 
-#include "recording/byte_reader.hpp"
+#include "recording/ros_header.hpp"
 
 #include <algorithm>
 #include <array>
@@ -76,11 +76,9 @@ PointCloud2Sweep decode_point_cloud2(const std::vector<std::uint8_t>& message) {
   std::uint32_t data_size = 0;
   try {
     detail::ByteReader reader(message.data(), message.size());
-    reader.read<std::uint32_t>();  // seq
-    const auto seconds = reader.read<std::uint32_t>();
-    const auto nanoseconds = reader.read<std::uint32_t>();
-    out.stamp_ns = static_cast<std::int64_t>(seconds) * 1000000000 + nanoseconds;
-    out.frame_id = reader.read_string();
+    const detail::RosHeader header = detail::read_ros_header(reader);
+    out.stamp_ns = header.stamp_ns;
+    out.frame_id = header.frame_id;
     out.height = reader.read<std::uint32_t>();
     out.width = reader.read<std::uint32_t>();
     const auto field_count = reader.read<std::uint32_t>();

@@ -254,4 +254,59 @@ std::vector<std::uint8_t> point_cloud2_message(const LidarCloud& cloud, const st
   return out;
 }
 
+namespace {
+
+void put_header(Bytes& out, std::int64_t stamp_ns, const std::string& frame_id) {
+  put<std::uint32_t>(out, 1);  // seq
+  const Bytes stamp = time_field(stamp_ns);
+  out.insert(out.end(), stamp.begin(), stamp.end());
+  put_string(out, frame_id);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> image_message(std::int64_t stamp_ns, const std::string& frame_id, int width, int height,
+                                        const std::string& encoding, std::uint32_t step,
+                                        const std::vector<std::uint8_t>& pixels, bool big_endian) {
+  Bytes out;
+  put_header(out, stamp_ns, frame_id);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(height));
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(width));
+  put_string(out, encoding);
+  put<std::uint8_t>(out, big_endian ? 1 : 0);
+  put<std::uint32_t>(out, step);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(pixels.size()));
+  out.insert(out.end(), pixels.begin(), pixels.end());
+  return out;
+}
+
+std::vector<std::uint8_t> compressed_image_message(std::int64_t stamp_ns, const std::string& frame_id,
+                                                   const std::string& format, const std::vector<std::uint8_t>& bytes) {
+  Bytes out;
+  put_header(out, stamp_ns, frame_id);
+  put_string(out, format);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(bytes.size()));
+  out.insert(out.end(), bytes.begin(), bytes.end());
+  return out;
+}
+
+std::vector<std::uint8_t> camera_info_message(std::int64_t stamp_ns, const std::string& frame_id,
+                                              const CameraInfo& camera) {
+  Bytes out;
+  put_header(out, stamp_ns, frame_id);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(camera.height));
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(camera.width));
+  put_string(out, camera.distortion_model);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(camera.distortion_coefficients.size()));
+  for (double d : camera.distortion_coefficients) put<double>(out, d);
+  for (int k = 0; k < 9; ++k) put<double>(out, camera.camera_matrix(k / 3, k % 3));
+  for (int k = 0; k < 9; ++k) put<double>(out, camera.rectification_matrix(k / 3, k % 3));
+  for (int k = 0; k < 12; ++k) put<double>(out, camera.projection_matrix(k / 4, k % 4));
+  put<std::uint32_t>(out, 0);  // binning_x
+  put<std::uint32_t>(out, 0);  // binning_y
+  for (int k = 0; k < 4; ++k) put<std::uint32_t>(out, 0);  // roi x_offset, y_offset, height, width
+  put<std::uint8_t>(out, 0);   // roi do_rectify
+  return out;
+}
+
 }  // namespace l2s::test

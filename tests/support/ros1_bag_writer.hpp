@@ -1,9 +1,11 @@
 #pragma once
 // A small ROS 1 bag writer for tests: the format the reader is checked
 // against, written from the description of bag format 2.0 (no ROS needed),
-// with each chunk compression a recorder may use. And PointCloud2 messages
-// of any field layout, as drivers publish them.
+// with each chunk compression a recorder may use. And the messages drivers
+// publish: PointCloud2 of any field layout, Image, CompressedImage and
+// CameraInfo.
 
+#include <l2s/camera.hpp>
 #include <l2s/types.hpp>
 
 #include <cstdint>
@@ -42,5 +44,18 @@ std::vector<std::uint8_t> point_cloud2_message(const LidarCloud& cloud, const st
                                                std::uint32_t height = 1, bool big_endian = false,
                                                std::uint32_t point_step = 0,
                                                const std::vector<double>& point_times = {});
+
+/// A sensor_msgs/Image of `pixels` (rows of `step` bytes, `encoding` as ROS names it).
+std::vector<std::uint8_t> image_message(std::int64_t stamp_ns, const std::string& frame_id, int width, int height,
+                                        const std::string& encoding, std::uint32_t step,
+                                        const std::vector<std::uint8_t>& pixels, bool big_endian = false);
+
+/// A sensor_msgs/CompressedImage of already compressed `bytes` in `format`.
+std::vector<std::uint8_t> compressed_image_message(std::int64_t stamp_ns, const std::string& frame_id,
+                                                   const std::string& format, const std::vector<std::uint8_t>& bytes);
+
+/// A sensor_msgs/CameraInfo of `camera` (binning 0, an empty region of interest).
+std::vector<std::uint8_t> camera_info_message(std::int64_t stamp_ns, const std::string& frame_id,
+                                              const CameraInfo& camera);
 
 }  // namespace l2s::test
