@@ -301,6 +301,8 @@ TEST(L2sInfo, ListsARecordingsTopicsAndFailsOnATruncatedOneWithOneLine) {
             std::string::npos)
       << text;
   EXPECT_NE(text.find("/stereo/left/image_raw"), std::string::npos) << text;
+  EXPECT_NE(text.find("picks     nothing: topic /stereo/left/image_raw: images without camera_info"), std::string::npos)
+      << text;
 
   const std::string bytes = l2s::test::read_bytes(path);
   const std::string cut = dir.file("cut.bag");

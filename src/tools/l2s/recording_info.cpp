@@ -1,8 +1,11 @@
-// l2s info RECORDING: what a ROS 1 bag holds, from its index, and the layout
-// of each point cloud topic from its first message.
+// l2s info RECORDING: what a ROS 1 bag holds, from its index, the layout of
+// each point cloud topic from its first message, and the topics a
+// calibration would read.
 
 #include "commands.hpp"
 
+#include <l2s/error.hpp>
+#include <l2s/recording/frame_pairing.hpp>
 #include <l2s/recording/point_cloud2.hpp>
 #include <l2s/recording/ros1_bag.hpp>
 
@@ -31,6 +34,19 @@ std::string cloud_layout(const Ros1Bag& bag, const std::string& topic) {
     return false;
   });
   return out;
+}
+
+/// The topics a calibration would read, or why it cannot choose them.
+void print_choice(const Ros1Bag& bag) {
+  try {
+    const RecordingTopics t = choose_topics(bag);
+    std::printf("picks     lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
+    if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
+    std::printf("\n");
+  } catch (const FileError& e) {
+    // The bag's path starts the message; the line above names it already.
+    std::printf("picks     nothing: %s\n", std::string(e.what()).substr(bag.path().size() + 2).c_str());
+  }
 }
 
 }  // namespace
@@ -65,6 +81,7 @@ int print_recording_info(const std::string& path) {
     if (t.type == "sensor_msgs/PointCloud2" && t.messages > 0)
       std::printf("    fields: %s\n", cloud_layout(bag, t.topic).c_str());
   }
+  print_choice(bag);
   return 0;
 }
 
