@@ -65,6 +65,15 @@ const std::map<std::string, Encoding>& encodings() {
 
 }  // namespace
 
+std::int64_t header_stamp_ns(const std::vector<std::uint8_t>& message) {
+  try {
+    ByteReader reader(message.data(), message.size());
+    return detail::read_ros_header(reader).stamp_ns;
+  } catch (const detail::ShortBuffer& e) {
+    throw InputError("message header", std::string("cut short: ") + e.what());
+  }
+}
+
 RecordedImage decode_image(const std::vector<std::uint8_t>& message) {
   const char* const input = "Image message";
   RecordedImage out;

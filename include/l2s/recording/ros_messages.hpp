@@ -13,6 +13,11 @@
 
 namespace l2s {
 
+/// The header stamp [ns since the epoch] of a message that starts with a
+/// std_msgs/Header (PointCloud2, Image, CompressedImage, CameraInfo, ...).
+/// Throws InputError("message header", "cut short ...").
+L2S_EXPORT std::int64_t header_stamp_ns(const std::vector<std::uint8_t>& message);
+
 /// An image message decoded into an 8-bit gray or BGR Image.
 struct RecordedImage {
   std::int64_t stamp_ns = 0;  ///< [ns since the epoch] the header's stamp

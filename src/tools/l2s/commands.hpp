@@ -27,6 +27,7 @@ void add_simulate_command(CLI::App& app, Runner& runner);
 void add_suite_command(CLI::App& app, Runner& runner);
 void add_detect_command(CLI::App& app, Runner& runner);
 void add_check_command(CLI::App& app, Runner& runner);
+void add_extract_command(CLI::App& app, Runner& runner);
 
 /// What `l2s calibrate` passes on for a lidar-lidar dataset.
 struct LidarPairRun {

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   l2s::cli::add_simulate_command(app, runner);
   l2s::cli::add_calibrate_command(app, runner);
   l2s::cli::add_info_command(app, runner);
+  l2s::cli::add_extract_command(app, runner);
   l2s::cli::add_params_command(app, runner);
   l2s::cli::add_evaluate_command(app, runner);
   l2s::cli::add_suite_command(app, runner);

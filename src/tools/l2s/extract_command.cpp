@@ -1,0 +1,66 @@
+// l2s extract RECORDING OUT_DIR: a ROS 1 bag written as a dataset folder
+// (DATASET.md), its sweeps paired with its images in time.
+
+#include "commands.hpp"
+
+#include <l2s/io/target_yaml.hpp>
+#include <l2s/recording/dataset_extraction.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace l2s::cli {
+namespace {
+
+struct ExtractRun {
+  std::string recording, folder, target;
+  ExtractionOptions options;
+};
+
+int extract(const ExtractRun& run) {
+  ExtractionOptions options = run.options;
+  if (!run.target.empty()) options.target = io::read_target(run.target);
+  const Ros1Bag bag(run.recording);
+  const ExtractionReport report = extract_dataset(bag, run.folder, options);
+  const RecordingTopics& t = report.topics;
+  std::printf("recording %s\n", run.recording.c_str());
+  std::printf("topics    lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
+  if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
+  std::printf("\nimages    %s\n", report.raw_images ? "raw (images: raw in dataset.yaml)" : "rectified");
+  std::printf("frames    %zu of %zu sweeps paired (sweep-image tolerance %.1f ms)\n", report.frames, report.sweeps,
+              report.tolerance_s * 1e3);
+  const std::size_t shown = 10;
+  for (std::size_t k = 0; k < report.dropped.size() && k < shown; ++k)
+    std::printf("  left out: %s\n", report.dropped[k].c_str());
+  if (report.dropped.size() > shown) std::printf("  ... and %zu more\n", report.dropped.size() - shown);
+  std::printf("wrote     %s%s\n", run.folder.c_str(),
+              run.target.empty() ? " (target.yaml: the default board; --target names yours)" : "");
+  return 0;
+}
+
+}  // namespace
+
+void add_extract_command(CLI::App& app, Runner& runner) {
+  auto* command = app.add_subcommand("extract", "Write a ROS 1 recording as a dataset folder (DATASET.md)");
+  auto run = std::make_shared<ExtractRun>();
+  command->add_option("recording", run->recording, "ROS 1 .bag file")->required();
+  command->add_option("out_dir", run->folder, "dataset folder to write (new, or empty)")->required();
+  command->add_option("--target", run->target, "target.yaml of the board (default: the default board)");
+  command->add_option("--lidar-topic", run->options.topics.lidar, "sensor_msgs/PointCloud2 topic of the lidar");
+  command->add_option("--left-topic", run->options.topics.left, "image topic of the left (or only) camera");
+  command->add_option("--right-topic", run->options.topics.right, "image topic of the right camera");
+  command->add_option("--left-info-topic", run->options.topics.left_info, "camera_info of the left camera");
+  command->add_option("--right-info-topic", run->options.topics.right_info, "camera_info of the right camera");
+  command->add_option("--tolerance", run->options.pairing.tolerance_s,
+                      "[s] sweep-image stamp tolerance (default: half the lidar's period)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--stereo-tolerance", run->options.pairing.stereo_tolerance_s,
+                      "[s] left-right stamp tolerance")
+      ->check(CLI::NonNegativeNumber);
+  command->callback([&runner, run] { runner = [run] { return extract(*run); }; });
+}
+
+}  // namespace l2s::cli
