@@ -6,6 +6,8 @@
 #include <l2s/error.hpp>
 #include <l2s/io/dataset.hpp>
 #include <l2s/recording/dataset_extraction.hpp>
+#include <l2s/recording/ros_messages.hpp>
+#include <l2s/sim/lidar_pair.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include "support/ros1_bag_writer.hpp"
@@ -15,6 +17,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 namespace {
@@ -142,6 +145,68 @@ TEST(DatasetExtractionFaults, ALostImageIsReportedAndAFailureLeavesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("never")));
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
     EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos) << entry.path();
+}
+
+// Stamps as drivers give them: the sweeps +-10 ms off their 10 Hz beat, the
+// images +-5 ms off theirs; every frame still pairs with its own images.
+TEST(DatasetExtractionFaults, JitteredStampsStillPairEachSweepWithItsImages) {
+  const l2s::sim::DatasetSimulator sim(config(false));
+  auto messages = recording(sim, "image_rect");
+  const std::int64_t jitter[] = {9000000, -8000000, 6000000, -10000000, 3000000};
+  int k = 0;
+  for (auto& m : messages) {
+    if (m.type == "sensor_msgs/CameraInfo") continue;
+    const std::int64_t shift = m.topic == "/velodyne_points" ? jitter[k++ % 5] : jitter[k % 5] / 2;
+    m.time_ns += shift;
+    // The header stamp leads every message: seq (4 bytes), then seconds and nanoseconds.
+    const std::int64_t stamp = l2s::header_stamp_ns(m.data) + shift;
+    const std::uint32_t parts[2] = {static_cast<std::uint32_t>(stamp / 1000000000),
+                                    static_cast<std::uint32_t>(stamp % 1000000000)};
+    std::memcpy(m.data.data() + 4, parts, 8);
+  }
+  const l2s::test::TempDir dir;
+  l2s::test::write_ros1_bag(dir.file("jitter.bag"), messages, "lz4", 5);
+  const auto report = l2s::extract_dataset(l2s::Ros1Bag(dir.file("jitter.bag")), dir.file("dataset"));
+  EXPECT_EQ(report.frames, 3u) << ::testing::PrintToString(report.dropped);
+  const auto dataset = l2s::io::Dataset::open(dir.file("dataset"));
+  for (int f = 0; f < 3; ++f)
+    EXPECT_EQ(dataset.load(static_cast<std::size_t>(f)).left.pixels, sim.frame(f).left.pixels) << "frame " << f;
+}
+
+// A lidar-lidar recording: each sweep of the first lidar with the second's.
+TEST(DatasetExtractionLidarPair, GivesBackBothLidarsSweeps) {
+  l2s::sim::LidarPairConfig pair;
+  pair.base = l2s::sim::SimulationConfig::paper(1, "vlp16");
+  pair.base.frames = 2;
+  pair.base.seed = 8;
+  pair.lidar2 = "hdl32";
+  const l2s::sim::LidarPairSimulator sim(pair);
+  std::vector<BagMessageToWrite> messages;
+  for (int k = 0; k < 2; ++k) {
+    const auto frame = sim.frame(k);
+    const std::int64_t t = kStart + k * kPeriod;
+    messages.push_back({"/vlp16/points", "sensor_msgs/PointCloud2", t,
+                        l2s::test::point_cloud2_message(frame.lidar, kLayout, t, "vlp16")});
+    messages.push_back({"/hdl32/points", "sensor_msgs/PointCloud2", t + 20000000,
+                        l2s::test::point_cloud2_message(frame.lidar2, kLayout, t + 20000000, "hdl32")});
+  }
+  const l2s::test::TempDir dir;
+  l2s::test::write_ros1_bag(dir.file("pair.bag"), messages, "bz2", 2);
+  l2s::ExtractionOptions options;
+  options.topics.lidar = "/vlp16/points";
+  options.topics.lidar2 = "/hdl32/points";
+  const auto report = l2s::extract_dataset(l2s::Ros1Bag(dir.file("pair.bag")), dir.file("dataset"), options);
+  EXPECT_EQ(report.frames, 2u) << ::testing::PrintToString(report.dropped);
+  const auto dataset = l2s::io::Dataset::open(dir.file("dataset"));
+  ASSERT_TRUE(dataset.has_lidar2());
+  ASSERT_EQ(dataset.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const auto read = dataset.load(static_cast<std::size_t>(k));
+    const auto made = sim.frame(k);
+    EXPECT_EQ(read.lidar.size(), made.lidar.size());
+    ASSERT_EQ(read.lidar2.size(), made.lidar2.size());
+    EXPECT_EQ(read.lidar2.ring, made.lidar2.ring);
+  }
 }
 
 #ifdef L2S_TOOL

@@ -1,6 +1,6 @@
 // A recording to a dataset folder in two passes over the chosen topics: the
 // first reads each message's header stamp and pairs the sweeps with the
-// images; the second decodes the paired messages and writes each frame once
+// images (or a second lidar's sweeps); the second decodes the paired messages and writes each frame once
 // its sweep and images are in. The folder is written under a temporary name
 // beside its place and renamed when complete.
 #include <l2s/recording/dataset_extraction.hpp>
@@ -81,9 +81,9 @@ ExtractionReport extract_dataset(const Ros1Bag& bag, const std::string& folder, 
   ExtractionReport report;
   report.topics = choose_topics(bag, options.topics);
   const RecordingTopics& t = report.topics;
-  // A lidar-lidar recording pairs sweeps with sweeps: not extracted yet.
-  if (!t.lidar2.empty()) throw FileError(bag.path(), "a lidar-lidar recording (" + t.lidar2 + "): not extracted yet");
-  const std::string& left_topic = t.left;
+  // A lidar-lidar recording pairs the second lidar's sweeps where the images would be.
+  const bool lidar_pair = !t.lidar2.empty();
+  const std::string& left_topic = lidar_pair ? t.lidar2 : t.left;
 
   // Pass 1: every message's header stamp, per topic, in reading order.
   std::map<std::string, std::vector<std::int64_t>> stamps;
@@ -97,12 +97,14 @@ ExtractionReport extract_dataset(const Ros1Bag& bag, const std::string& folder, 
   });
   report.sweeps = stamps[t.lidar].size();
   PairingParams pairing = options.pairing;
+  if (lidar_pair) pairing.left_name = "lidar2 sweep";
   const FramePairing paired = pair_in_time(stamps[t.lidar], stamps[left_topic],
                                            t.right.empty() ? std::vector<std::int64_t>{} : stamps[t.right], pairing);
   report.tolerance_s = paired.tolerance_s;
   report.dropped = paired.dropped;
   if (paired.frames.empty())
-    throw FileError(bag.path(), "no sweep of " + t.lidar + " pairs with an image of " + left_topic +
+    throw FileError(bag.path(), "no sweep of " + t.lidar + " pairs with " + (lidar_pair ? "a sweep" : "an image") +
+                                    " of " + left_topic +
                                     (paired.dropped.empty() ? "" : " (" + paired.dropped.front() + ")"));
 
   std::map<std::pair<int, std::size_t>, Slot> slots;
@@ -114,18 +116,22 @@ ExtractionReport extract_dataset(const Ros1Bag& bag, const std::string& folder, 
   const int parts = t.right.empty() ? 2 : 3;
 
   TemporaryFolder partial(target_folder);
-  StereoCamera cameras;
-  cameras.left = first_camera_info(bag, t.left_info);
-  if (!t.right.empty()) cameras.right = first_camera_info(bag, t.right_info);
-  report.raw_images = t.left.find("rect") == std::string::npos;
-  cameras.images = report.raw_images ? ImageKind::Raw : ImageKind::Rectified;
   std::optional<io::DatasetWriter> writer;
-  try {
-    writer.emplace(partial.path().string(), cameras, options.target,
-                   t.right.empty() ? io::CameraLayout::Mono : io::CameraLayout::Stereo);
-  } catch (const FileError& e) {
-    throw FileError(bag.path(), "camera_info of " + t.left_info + (t.right.empty() ? "" : " and " + t.right_info) +
-                                    ": " + e.what());
+  if (lidar_pair) {
+    writer.emplace(io::DatasetWriter::lidar_pair(partial.path().string(), options.target));
+  } else {
+    StereoCamera cameras;
+    cameras.left = first_camera_info(bag, t.left_info);
+    if (!t.right.empty()) cameras.right = first_camera_info(bag, t.right_info);
+    report.raw_images = t.left.find("rect") == std::string::npos;
+    cameras.images = report.raw_images ? ImageKind::Raw : ImageKind::Rectified;
+    try {
+      writer.emplace(partial.path().string(), cameras, options.target,
+                     t.right.empty() ? io::CameraLayout::Mono : io::CameraLayout::Stereo);
+    } catch (const FileError& e) {
+      throw FileError(bag.path(), "camera_info of " + t.left_info + (t.right.empty() ? "" : " and " + t.right_info) +
+                                      ": " + e.what());
+    }
   }
 
   // Pass 2: the paired messages decoded, each frame written when complete.
@@ -139,6 +145,7 @@ ExtractionReport extract_dataset(const Ros1Bag& bag, const std::string& folder, 
     PendingFrame& p = pending[slot->second.frame];
     try {
       if (part == 0) p.frame.lidar = decode_point_cloud2(message.data).cloud;
+      else if (lidar_pair) p.frame.lidar2 = decode_point_cloud2(message.data).cloud;
       else if (part == 1) p.frame.left = decode_any_image(message);
       else p.frame.right = decode_any_image(message);
     } catch (const InputError& e) {

@@ -72,25 +72,25 @@ FramePairing pair_in_time(const std::vector<std::int64_t>& lidar, const std::vec
   std::vector<std::size_t> left_of(lidar.size(), kNone), taken_by(left.size(), kNone);
   for (std::size_t s = 0; s < lidar.size(); ++s) {
     if (left.empty()) {
-      out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": no left image in the recording");
+      out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": no " + params.left_name + " in the recording");
       continue;
     }
     const std::size_t image = nearest(left, left_order, lidar[s]);
     const std::int64_t gap = std::llabs(left[image] - lidar[s]);
     if (gap > tolerance_ns) {
-      out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": the nearest left image is " +
+      out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": the nearest " + params.left_name + " is " +
                             milliseconds(gap * 1e-9) + " away (tolerance " + milliseconds(out.tolerance_s) + ")");
       continue;
     }
     const std::size_t rival = taken_by[image];
     if (rival != kNone && std::llabs(left[image] - lidar[rival]) <= gap) {
-      out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": its nearest left image went to the nearer sweep at " +
+      out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": its nearest " + params.left_name + " went to the nearer sweep at " +
                             seconds(lidar[rival]));
       continue;
     }
     if (rival != kNone) {
       left_of[rival] = kNone;
-      out.dropped.push_back("sweep at " + seconds(lidar[rival]) + ": its nearest left image went to the nearer sweep at " +
+      out.dropped.push_back("sweep at " + seconds(lidar[rival]) + ": its nearest " + params.left_name + " went to the nearer sweep at " +
                             seconds(lidar[s]));
     }
     taken_by[image] = s;
@@ -105,11 +105,11 @@ FramePairing pair_in_time(const std::vector<std::int64_t>& lidar, const std::vec
       const std::size_t r = nearest(right, right_order, left[frame.left]);
       const std::int64_t gap = std::llabs(right[r] - left[frame.left]);
       if (gap > stereo_ns || right_used[r]) {
-        out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": its left image at " + seconds(left[frame.left]) +
-                              (gap > stereo_ns ? " has no right image within " +
+        out.dropped.push_back("sweep at " + seconds(lidar[s]) + ": its " + params.left_name + " at " + seconds(left[frame.left]) +
+                              (gap > stereo_ns ? " has no " + params.right_name + " within " +
                                                      milliseconds(params.stereo_tolerance_s) + " (nearest " +
                                                      milliseconds(gap * 1e-9) + ")"
-                                               : " has no right image of its own"));
+                                               : " has no " + params.right_name + " of its own"));
         taken_by[frame.left] = kNone;
         continue;
       }
@@ -122,9 +122,9 @@ FramePairing pair_in_time(const std::vector<std::int64_t>& lidar, const std::vec
   for (std::size_t i = 0; i < left.size(); ++i) unused_left += taken_by[i] == kNone;
   for (std::size_t i = 0; i < right.size(); ++i) unused_right += !right_used[i];
   if (unused_left > 0 && !lidar.empty())
-    out.dropped.push_back(std::to_string(unused_left) + " left image(s) in no frame");
+    out.dropped.push_back(std::to_string(unused_left) + " " + params.left_name + "(s) in no frame");
   if (unused_right > 0 && !lidar.empty())
-    out.dropped.push_back(std::to_string(unused_right) + " right image(s) in no frame");
+    out.dropped.push_back(std::to_string(unused_right) + " " + params.right_name + "(s) in no frame");
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // A recording turned into a dataset folder (../shared/DATASET.md): the
-// chosen topics decoded, the sweeps paired with the images by their header
-// stamps, and the frames written with io::DatasetWriter.
+// chosen topics decoded, the sweeps paired with the images (or a second
+// lidar's sweeps) by their header stamps, and the frames written with io::DatasetWriter.
 
 #include <l2s/export.hpp>
 #include <l2s/recording/frame_pairing.hpp>
@@ -35,8 +35,9 @@ struct ExtractionReport {
 /// Throws FileError naming the recording (and the topic) for a fault of the
 /// recording (a topic missing or of the wrong type, images without
 /// camera_info, an image of another size than its camera_info, no frame
-/// paired, a lidar-lidar recording: not extracted yet), or naming `folder`
-/// when it exists and is not empty or cannot be written.
+/// paired), or naming `folder` when it exists and is not empty or cannot be
+/// written. With `topics.lidar2` named, a lidar-lidar dataset: each sweep
+/// of the first lidar paired with the second's nearest one, no cameras.
 L2S_EXPORT ExtractionReport extract_dataset(const Ros1Bag& bag, const std::string& folder,
                                             const ExtractionOptions& options = {});
 

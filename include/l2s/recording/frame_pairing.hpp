@@ -53,6 +53,10 @@ struct PairingParams {
   /// [s] how far the left and right images' stamps may lie apart: stereo
   /// rigs trigger both cameras together.
   double stereo_tolerance_s = 0.005;
+  /// What the second and third streams are, in the drop reports ("left
+  /// image", or "lidar2 sweep" when a second lidar pairs with the first).
+  std::string left_name = "left image";
+  std::string right_name = "right image";
 };
 
 /// Pairs each lidar stamp with the nearest left image stamp within the

@@ -27,10 +27,14 @@ int extract(const ExtractRun& run) {
   const ExtractionReport report = extract_dataset(bag, run.folder, options);
   const RecordingTopics& t = report.topics;
   std::printf("recording %s\n", run.recording.c_str());
-  std::printf("topics    lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
-  if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
-  std::printf("\nimages    %s\n", report.raw_images ? "raw (images: raw in dataset.yaml)" : "rectified");
-  std::printf("frames    %zu of %zu sweeps paired (sweep-image tolerance %.1f ms)\n", report.frames, report.sweeps,
+  if (!t.lidar2.empty()) {
+    std::printf("topics    lidar %s, lidar2 %s: a lidar-lidar dataset\n", t.lidar.c_str(), t.lidar2.c_str());
+  } else {
+    std::printf("topics    lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
+    if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
+    std::printf("\nimages    %s\n", report.raw_images ? "raw (images: raw in dataset.yaml)" : "rectified");
+  }
+  std::printf("frames    %zu of %zu sweeps paired (tolerance %.1f ms)\n", report.frames, report.sweeps,
               report.tolerance_s * 1e3);
   const std::size_t shown = 10;
   for (std::size_t k = 0; k < report.dropped.size() && k < shown; ++k)
@@ -50,12 +54,14 @@ void add_extract_command(CLI::App& app, Runner& runner) {
   command->add_option("out_dir", run->folder, "dataset folder to write (new, or empty)")->required();
   command->add_option("--target", run->target, "target.yaml of the board (default: the default board)");
   command->add_option("--lidar-topic", run->options.topics.lidar, "sensor_msgs/PointCloud2 topic of the lidar");
+  command->add_option("--lidar2-topic", run->options.topics.lidar2,
+                      "PointCloud2 topic of a second lidar: a lidar-lidar dataset, no cameras");
   command->add_option("--left-topic", run->options.topics.left, "image topic of the left (or only) camera");
   command->add_option("--right-topic", run->options.topics.right, "image topic of the right camera");
   command->add_option("--left-info-topic", run->options.topics.left_info, "camera_info of the left camera");
   command->add_option("--right-info-topic", run->options.topics.right_info, "camera_info of the right camera");
   command->add_option("--tolerance", run->options.pairing.tolerance_s,
-                      "[s] sweep-image stamp tolerance (default: half the lidar's period)")
+                      "[s] stamp tolerance of a sweep and its image (default: half the lidar's period)")
       ->check(CLI::NonNegativeNumber);
   command->add_option("--stereo-tolerance", run->options.pairing.stereo_tolerance_s,
                       "[s] left-right stamp tolerance")
