@@ -16,6 +16,11 @@
 #include <l2s/sim/simulation.hpp>
 
 #include "io/lzf.hpp"
+#if L2S_SEEDS_RECORDING
+#include "support/ros1_bag_writer.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#endif
 
 #include <cstring>
 #include <filesystem>
@@ -168,6 +173,61 @@ void yaml_seeds(const fs::path& out, const sim::DatasetSimulator& simulator) {
               "         1.0, 0.0, 0.0, 0.3, 0, 0, 0, 1]\nother: {a: 1}\n");
 }
 
+#if L2S_SEEDS_RECORDING
+/// Bags (each compression; a point cloud, an image and its camera_info, two
+/// messages each) and single messages, behind the decoder-selecting byte of
+/// ros_messages. Tiny: 30 points, 8x6 pixels.
+void recording_seeds(const fs::path& out, const LidarCloud& board, const sim::DatasetSimulator& simulator) {
+  fs::create_directories(out / "ros1_bag");
+  fs::create_directories(out / "ros_messages");
+  LidarCloud few;
+  for (std::size_t i = 0; i < board.size() && few.size() < 30; i += std::max<std::size_t>(1, board.size() / 30)) {
+    few.points.push_back(board.points[i]);
+    if (board.has_intensity()) few.intensity.push_back(board.intensity[i]);
+    if (board.has_ring()) few.ring.push_back(board.ring[i]);
+  }
+  const std::vector<test::CloudField> velodyne = {{"x", 7}, {"y", 7}, {"z", 7}, {"intensity", 7}, {"ring", 4}, {"time", 7}};
+  const std::vector<test::CloudField> doubles = {{"t", 6}, {"x", 8}, {"y", 8}, {"z", 8}, {"i", 7}, {"laser_id", 2}};
+  const std::int64_t t0 = 1700000000LL * 1000000000LL;
+  std::vector<std::uint8_t> gray(8 * 6);
+  for (std::size_t i = 0; i < gray.size(); ++i) gray[i] = static_cast<std::uint8_t>(i * 5);
+  CameraInfo small = simulator.cameras().left;
+  small.width = 8, small.height = 6;
+  const auto cloud = test::point_cloud2_message(few, velodyne, t0, "velodyne");
+  const auto image = test::image_message(t0, "left", 8, 6, "mono8", 8, gray);
+  const auto info = test::camera_info_message(t0, "left", small);
+  for (const char* compression : {"none", "bz2", "lz4"}) {
+    std::vector<test::BagMessageToWrite> messages;
+    for (int k = 0; k < 2; ++k) {
+      messages.push_back({"/points", "sensor_msgs/PointCloud2", t0 + k * 100000000, cloud});
+      messages.push_back({"/left/image_raw", "sensor_msgs/Image", t0 + k * 100000000 + 1000, image});
+      messages.push_back({"/left/camera_info", "sensor_msgs/CameraInfo", t0 + k * 100000000 + 1000, info});
+    }
+    test::write_ros1_bag((out / "ros1_bag" / (std::string(compression) + ".bag")).string(), messages, compression, 3);
+  }
+  const auto seed = [&](const std::string& name, std::uint8_t decoder, const std::vector<std::uint8_t>& message) {
+    std::string bytes(1, static_cast<char>(decoder));
+    bytes.append(message.begin(), message.end());
+    write_bytes(out / "ros_messages" / name, bytes);
+  };
+  seed("cloud_velodyne.bin", 0, cloud);
+  LidarCloud organised = few;
+  organised.points.resize(24), organised.ring.resize(24);
+  organised.intensity.resize(few.has_intensity() ? 24 : 0);
+  seed("cloud_organised_big_endian.bin", 0, test::point_cloud2_message(organised, doubles, t0, "os", 4, true, 48));
+  seed("image_mono8.bin", 1, image);
+  seed("image_bayer.bin", 1, test::image_message(t0, "left", 8, 6, "bayer_rggb8", 8, gray));
+  std::vector<std::uint8_t> colour(8 * 6 * 3);
+  for (std::size_t i = 0; i < colour.size(); ++i) colour[i] = static_cast<std::uint8_t>(i * 3);
+  seed("image_rgb8.bin", 1, test::image_message(t0, "left", 8, 6, "rgb8", 24, colour));
+  std::vector<std::uint8_t> png;
+  cv::imencode(".png", cv::Mat(6, 8, CV_8UC1, gray.data()), png);
+  seed("compressed_png.bin", 2, test::compressed_image_message(t0, "left", "png", png));
+  seed("camera_info.bin", 3, info);
+  seed("header.bin", 4, std::vector<std::uint8_t>(cloud.begin(), cloud.begin() + 24));
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -188,6 +248,9 @@ int main(int argc, char** argv) {
     if (setting == 1) {
       pcd_seeds(out, board);
       yaml_seeds(out, simulator);
+#if L2S_SEEDS_RECORDING
+      recording_seeds(out, board, simulator);
+#endif
     }
   }
   std::cout << "seeds written to " << out << "\n";

@@ -14,12 +14,15 @@ mode=${1:-replay}
 seconds=${2:-30}
 only=${3:-}
 build=build-asan
-targets=(pcd_ascii pcd_binary pcd_binary_compressed camera_info target_yaml params_yaml transform_yaml calibrator_add)
+targets=(pcd_ascii pcd_binary pcd_binary_compressed camera_info target_yaml params_yaml transform_yaml calibrator_add
+         ros1_bag ros_messages)
 
 dictionary() {
   case $1 in
     pcd_*) echo "-dict=fuzz/dict/pcd.dict" ;;
     calibrator_add) echo "-max_len=200000" ;;
+    ros1_bag) echo "-max_len=20000 -dict=fuzz/dict/ros1_bag.dict" ;;
+    ros_messages) echo "-max_len=5000" ;;
     *) echo "-dict=fuzz/dict/yaml.dict" ;;
   esac
 }

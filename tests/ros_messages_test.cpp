@@ -4,6 +4,7 @@
 // images and camera models.
 
 #include <l2s/error.hpp>
+#include <l2s/recording/point_cloud2.hpp>
 #include <l2s/recording/ros_messages.hpp>
 
 #include "support/ros1_bag_writer.hpp"
@@ -140,6 +141,28 @@ TEST(RecordedImage, AnUnknownEncodingOrShortRowsAreNamed) {
   auto cut = image_message(kStamp, "cam", kWidth, kHeight, "bgr8", kWidth * 3, pixels);
   cut.resize(cut.size() - 10);
   EXPECT_THROW(l2s::decode_image(cut), l2s::InputError);
+}
+
+// Found by fuzzing (fuzz/ros1_bag_fuzzer.cpp): a header may state anything.
+TEST(RecordedImage, AHeaderStatingGigapixelsIsRefusedBeforeDecoding) {
+  std::vector<std::uint8_t> png;
+  ASSERT_TRUE(cv::imencode(".png", cv::Mat(6, 8, CV_8UC1, cv::Scalar(9)), png));
+  const std::uint8_t huge[8] = {0, 1, 0x86, 0xA0, 0, 1, 0x86, 0xA0};  // IHDR: 100000 x 100000 px
+  std::copy(huge, huge + 8, png.begin() + 16);
+  try {
+    l2s::decode_compressed_image(l2s::test::compressed_image_message(kStamp, "cam", "png", png));
+    FAIL() << "a 10-gigapixel png was decoded";
+  } catch (const l2s::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("100000x100000 px, more than 64 megapixels"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PointCloud2Empty, BillionsOfEmptyRowsDecodeAtOnce) {
+  const auto message = l2s::test::point_cloud2_message(l2s::LidarCloud{}, {{"x", 7}, {"y", 7}, {"z", 7}}, kStamp,
+                                                       "velodyne", 4000000000u);
+  const auto sweep = l2s::decode_point_cloud2(message);  // 4e9 rows of nothing: no loop over them
+  EXPECT_EQ(sweep.height, 4000000000u);
+  EXPECT_TRUE(sweep.cloud.empty());
 }
 
 TEST(RecordedCameraInfo, KeepsTheWholeModel) {

@@ -50,6 +50,12 @@ std::vector<std::uint8_t> from_lz4(const std::uint8_t* data, std::size_t data_si
 
 std::vector<std::uint8_t> decompress_chunk(const std::string& compression, const std::uint8_t* data,
                                            std::size_t data_size, std::size_t size) {
+  // Recorders write chunks of about a megabyte (rosbag's default 768 KiB);
+  // a stated size far beyond is a corrupt header, not a chunk to allocate.
+  constexpr std::size_t kMaxChunk = std::size_t{256} << 20;
+  if (size > kMaxChunk)
+    throw std::runtime_error("it states " + std::to_string(size) + " bytes once decompressed, more than the " +
+                             std::to_string(kMaxChunk >> 20) + " MiB a chunk may hold");
   if (compression == "none") {
     if (data_size != size)
       throw std::runtime_error("it holds " + std::to_string(data_size) + " bytes, not the stated " + std::to_string(size));

@@ -128,6 +128,7 @@ PointCloud2Sweep decode_point_cloud2(const std::vector<std::uint8_t>& message) {
   const PointCloud2Field* time = field_named(out.fields, {"time", "t", "timestamp", "time_stamp"});
   const bool swap = out.big_endian;  // hosts are little-endian (checked in the build)
   const std::size_t count = static_cast<std::size_t>(out.width) * out.height;
+  if (count == 0) return out;  // an empty sweep (billions of empty rows would still take seconds)
   out.cloud.points.reserve(count);
   if (intensity) out.cloud.intensity.reserve(count);
   if (ring) out.cloud.ring.reserve(count);
@@ -141,9 +142,10 @@ PointCloud2Sweep decode_point_cloud2(const std::vector<std::uint8_t>& message) {
       out.cloud.points.emplace_back(value_of(*x, point, swap), value_of(*y, point, swap), value_of(*z, point, swap));
       if (intensity) out.cloud.intensity.push_back(static_cast<float>(value_of(*intensity, point, swap)));
       if (ring) {
+        // A float ring field may hold anything; NaN and negatives become laser 0.
         const double r = value_of(*ring, point, swap);
-        out.cloud.ring.push_back(static_cast<std::uint16_t>(
-            std::clamp(r, 0.0, static_cast<double>(std::numeric_limits<std::uint16_t>::max()))));
+        constexpr double kTop = std::numeric_limits<std::uint16_t>::max();
+        out.cloud.ring.push_back(static_cast<std::uint16_t>(r > 0.0 ? std::min(r, kTop) : 0.0));
       }
       if (time) out.point_times.push_back(value_of(*time, point, swap));
     }

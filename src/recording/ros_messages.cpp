@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cstring>
+#include <limits>
 #include <map>
 
 namespace l2s {
@@ -63,6 +64,33 @@ const std::map<std::string, Encoding>& encodings() {
   return table;
 }
 
+/// Why a png or jpeg stream is refused before decoding, or "": its header
+/// states more pixels than any camera a calibration uses delivers (a
+/// corrupt header would otherwise allocate gigabytes).
+std::string too_large(const std::vector<std::uint8_t>& bytes) {
+  constexpr std::uint64_t kMaxPixels = std::uint64_t{64} << 20;
+  std::uint64_t width = 0, height = 0;
+  const auto big16 = [&](std::size_t at) { return std::uint64_t{bytes[at]} << 8 | bytes[at + 1]; };
+  const auto big32 = [&](std::size_t at) { return big16(at) << 16 | big16(at + 2); };
+  if (bytes.size() >= 24 && bytes[0] == 0x89 && bytes[1] == 'P' && bytes[2] == 'N' && bytes[3] == 'G') {
+    width = big32(16), height = big32(20);  // IHDR, the first chunk
+  } else if (bytes.size() >= 4 && bytes[0] == 0xFF && bytes[1] == 0xD8) {
+    // JPEG markers up to the first start-of-frame (SOF0..SOF15 but DHT, JPG, DAC).
+    for (std::size_t at = 2; at + 9 < bytes.size();) {
+      if (bytes[at] != 0xFF) break;
+      const std::uint8_t marker = bytes[at + 1];
+      if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC) {
+        height = big16(at + 5), width = big16(at + 7);
+        break;
+      }
+      at += 2 + big16(at + 2);
+    }
+  }
+  if (width * height <= kMaxPixels) return "";
+  return "its header states " + std::to_string(width) + "x" + std::to_string(height) + " px, more than " +
+         std::to_string(kMaxPixels >> 20) + " megapixels";
+}
+
 }  // namespace
 
 std::int64_t header_stamp_ns(const std::vector<std::uint8_t>& message) {
@@ -108,6 +136,9 @@ RecordedImage decode_image(const std::vector<std::uint8_t>& message) {
   if (static_cast<std::uint64_t>(step) * height > size)
     throw InputError(input, "holds " + std::to_string(size) + " data bytes, fewer than " + std::to_string(height) +
                                 " rows of " + std::to_string(step));
+  if (static_cast<std::uint64_t>(width) > std::numeric_limits<int>::max() ||
+      static_cast<std::uint64_t>(height) > std::numeric_limits<int>::max())
+    throw InputError(input, "an image of " + std::to_string(width) + "x" + std::to_string(height) + " px");
   cv::Mat mat(static_cast<int>(height), static_cast<int>(width), encoding.type, const_cast<std::uint8_t*>(data), step);
   mat = mat.clone();
   if (big_endian && mat.depth() == CV_16U) {
@@ -116,12 +147,17 @@ RecordedImage decode_image(const std::vector<std::uint8_t>& message) {
       for (int k = 0; k < mat.cols * mat.channels(); ++k) p[k] = static_cast<std::uint16_t>((p[k] >> 8) | (p[k] << 8));
     }
   }
-  if (encoding.bayer >= 0) {
-    cv::Mat colour;
-    cv::cvtColor(mat, colour, encoding.bayer);
-    out.image = to_image(colour);
-  } else {
-    out.image = eight_bit(mat, encoding.rgb);
+  try {
+    if (encoding.bayer >= 0) {
+      cv::Mat colour;
+      cv::cvtColor(mat, colour, encoding.bayer);
+      out.image = to_image(colour);
+    } else {
+      out.image = eight_bit(mat, encoding.rgb);
+    }
+  } catch (const cv::Exception& e) {
+    throw InputError(input, "a " + std::to_string(width) + "x" + std::to_string(height) + " px " + out.encoding +
+                                " image that does not convert: " + e.err);
   }
   return out;
 }
@@ -142,7 +178,14 @@ RecordedImage decode_compressed_image(const std::vector<std::uint8_t>& message) 
   } catch (const detail::ShortBuffer& e) {
     throw InputError(input, std::string("cut short: ") + e.what());
   }
-  const cv::Mat mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  if (const std::string why = too_large(bytes); !why.empty()) throw InputError(input, why);
+  cv::Mat mat;
+  try {
+    mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError(input, "its " + std::to_string(bytes.size()) + " bytes (format '" + out.encoding +
+                                "') do not decode: " + e.err);
+  }
   if (mat.empty())
     throw InputError(input, "its " + std::to_string(bytes.size()) + " bytes (format '" + out.encoding +
                                 "') do not decode as an image");
