@@ -16,8 +16,9 @@ using Bytes = std::vector<std::uint8_t>;
 
 template <typename T>
 void put(Bytes& out, T value) {
-  const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
-  out.insert(out.end(), p, p + sizeof(T));
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &value, sizeof(T));
 }
 
 void put_string(Bytes& out, const std::string& s) {
