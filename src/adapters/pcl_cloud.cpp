@@ -8,6 +8,8 @@
 
 #include <pcl/pcl_config.h>
 
+#include "detail/point_field_values.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -26,56 +28,13 @@ bool host_big_endian() {
   return first == 0;
 }
 
-// Bytes of one element of a PCL datatype; 0 for an unknown type.
+// Bytes of one element of a PCL datatype; 0 for an unknown type (the 64-bit
+// integers only where this PCL has them).
 std::size_t element_size(std::uint8_t type) {
-  switch (type) {
-    case pcl::PCLPointField::INT8:
-    case pcl::PCLPointField::UINT8:
-      return 1;
-    case pcl::PCLPointField::INT16:
-    case pcl::PCLPointField::UINT16:
-      return 2;
-    case pcl::PCLPointField::INT32:
-    case pcl::PCLPointField::UINT32:
-    case pcl::PCLPointField::FLOAT32:
-      return 4;
-    case pcl::PCLPointField::FLOAT64:
-      return 8;
-#if PCL_VERSION_COMPARE(>=, 1, 12, 0)
-    case pcl::PCLPointField::INT64:
-    case pcl::PCLPointField::UINT64:
-      return 8;
+#if PCL_VERSION_COMPARE(<, 1, 12, 0)
+  if (type > pcl::PCLPointField::FLOAT64) return 0;
 #endif
-    default:
-      return 0;
-  }
-}
-
-template <typename T>
-double load_as(const std::uint8_t* p, bool swap) {
-  std::uint8_t raw[sizeof(T)];
-  std::memcpy(raw, p, sizeof(T));
-  if (swap) std::reverse(raw, raw + sizeof(T));
-  T value;
-  std::memcpy(&value, raw, sizeof(T));
-  return static_cast<double>(value);
-}
-
-double load(const std::uint8_t* p, std::uint8_t type, bool swap) {
-  switch (type) {
-    case pcl::PCLPointField::INT8: return load_as<std::int8_t>(p, swap);
-    case pcl::PCLPointField::UINT8: return load_as<std::uint8_t>(p, swap);
-    case pcl::PCLPointField::INT16: return load_as<std::int16_t>(p, swap);
-    case pcl::PCLPointField::UINT16: return load_as<std::uint16_t>(p, swap);
-    case pcl::PCLPointField::INT32: return load_as<std::int32_t>(p, swap);
-    case pcl::PCLPointField::UINT32: return load_as<std::uint32_t>(p, swap);
-    case pcl::PCLPointField::FLOAT32: return load_as<float>(p, swap);
-#if PCL_VERSION_COMPARE(>=, 1, 12, 0)
-    case pcl::PCLPointField::INT64: return load_as<std::int64_t>(p, swap);
-    case pcl::PCLPointField::UINT64: return load_as<std::uint64_t>(p, swap);
-#endif
-    default: return load_as<double>(p, swap);  // FLOAT64; other types are rejected before
-  }
+  return detail::point_field_size(type);
 }
 
 // Integers are rounded and clamped: a float intensity 300.4 in a UINT8 field is 255.
@@ -190,7 +149,7 @@ LidarCloud from_pcl_records(const PclRecords& r) {
   for (std::uint64_t row = 0; row < r.height; ++row)
     for (std::uint64_t column = 0; column < r.width; ++column) {
       const std::uint8_t* point = r.data + row * r.row_step + column * r.point_step;
-      const auto value = [&](const pcl::PCLPointField* f) { return load(point + f->offset, f->datatype, swap); };
+      const auto value = [&](const pcl::PCLPointField* f) { return detail::load_point_field(point + f->offset, f->datatype, swap); };
       out.points.emplace_back(value(wanted.xyz[0]), value(wanted.xyz[1]), value(wanted.xyz[2]));
       if (wanted.intensity) out.intensity.push_back(static_cast<float>(value(wanted.intensity)));
       if (wanted.ring) {

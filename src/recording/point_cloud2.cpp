@@ -6,57 +6,20 @@
 
 #include <l2s/error.hpp>
 
+#include "detail/point_field_values.hpp"
 #include "recording/ros_header.hpp"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstring>
 #include <limits>
-#include <optional>
 
 namespace l2s {
 namespace {
 
 const char* const kInput = "PointCloud2 message";
 
-std::size_t type_size(std::uint8_t datatype) {
-  switch (datatype) {
-    case PointCloud2Field::Int8:
-    case PointCloud2Field::UInt8: return 1;
-    case PointCloud2Field::Int16:
-    case PointCloud2Field::UInt16: return 2;
-    case PointCloud2Field::Int32:
-    case PointCloud2Field::UInt32:
-    case PointCloud2Field::Float32: return 4;
-    case PointCloud2Field::Float64: return 8;
-    default: return 0;
-  }
-}
-
-template <typename T>
-T load(const std::uint8_t* at, bool swap) {
-  std::array<std::uint8_t, sizeof(T)> bytes;
-  std::memcpy(bytes.data(), at, sizeof(T));
-  if (swap) std::reverse(bytes.begin(), bytes.end());
-  T value;
-  std::memcpy(&value, bytes.data(), sizeof(T));
-  return value;
-}
-
 /// One field's value in a point, as a double.
 double value_of(const PointCloud2Field& f, const std::uint8_t* point, bool swap) {
-  const std::uint8_t* at = point + f.offset;
-  switch (f.datatype) {
-    case PointCloud2Field::Int8: return load<std::int8_t>(at, false);
-    case PointCloud2Field::UInt8: return load<std::uint8_t>(at, false);
-    case PointCloud2Field::Int16: return load<std::int16_t>(at, swap);
-    case PointCloud2Field::UInt16: return load<std::uint16_t>(at, swap);
-    case PointCloud2Field::Int32: return load<std::int32_t>(at, swap);
-    case PointCloud2Field::UInt32: return load<std::uint32_t>(at, swap);
-    case PointCloud2Field::Float32: return load<float>(at, swap);
-    default: return load<double>(at, swap);
-  }
+  return detail::load_point_field(point + f.offset, f.datatype, swap);
 }
 
 const PointCloud2Field* field_named(const std::vector<PointCloud2Field>& fields,
@@ -102,7 +65,8 @@ PointCloud2Sweep decode_point_cloud2(const std::vector<std::uint8_t>& message) {
   }
 
   for (const auto& f : out.fields) {
-    const std::size_t size = type_size(f.datatype);
+    // sensor_msgs/PointField has no 64-bit integers (PCL's 9 and 10).
+    const std::size_t size = f.datatype <= PointCloud2Field::Float64 ? detail::point_field_size(f.datatype) : 0;
     if (size == 0)
       throw InputError(kInput, "field '" + f.name + "' has datatype " + std::to_string(f.datatype) +
                                    ", not one of sensor_msgs/PointField's 1..8");
