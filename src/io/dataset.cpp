@@ -86,24 +86,13 @@ std::set<std::string> lidar_pair_stems(const std::string& folder) {
   return lidar;
 }
 
-/// A sweep as the calibrator takes it: rings from the field, the rows of an
-/// organised cloud or the laser model; none for a ring-free scan.
 void load_sweep(const std::string& path, LidarCloud* cloud, RingSource* source,
                 std::optional<RingRecoveryReport>* recovery) {
   PcdFile sweep = read_pcd_file(path);
   *cloud = std::move(sweep.cloud);
-  std::string ignored;
-  if (cloud->has_ring()) {
-    const RingFieldCheck field = check_ring_field(*cloud);
-    if (field.usable) return;
-    ignored = "ring field ignored: " + field.reason;  // the returns decide instead
-    cloud->ring.clear();
-  }
-  *recovery = sweep.height > 1 ? rings_from_rows(*cloud, sweep.height) : recover_ring_structure(*cloud);
-  if (!ignored.empty()) (*recovery)->note = ignored + ((*recovery)->note.empty() ? "" : "; " + (*recovery)->note);
-  *source = (*recovery)->source;
-  // A ring-free scan has no rings to give: the calibrator accumulates it instead.
-  if ((*recovery)->structure == ScanStructure::RingFree) cloud->ring.clear();
+  SweptRings rings = settle_rings(*cloud, sweep.height);
+  *source = rings.source;
+  *recovery = std::move(rings.recovery);
 }
 
 void check_size(const Image& image, const CameraInfo& camera, const std::string& image_path,

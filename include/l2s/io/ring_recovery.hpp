@@ -13,6 +13,7 @@
 #include <l2s/types.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -135,5 +136,20 @@ struct ScanClassification {
   std::string reason;
 };
 L2S_EXPORT ScanClassification classify_scan(const LidarCloud& cloud, const RingRecoveryParams& params = {});
+
+/// Where a sweep's rings came from, as the calibrator takes the sweep (settle_rings).
+struct SweptRings {
+  RingSource source = RingSource::Field;
+  /// How the rings were found when the sweep had no usable ring field; empty for RingSource::Field.
+  std::optional<RingRecoveryReport> recovery;
+};
+
+/// A sweep made ready for the calibrator, as io::Dataset loads each one: a
+/// usable ring field (check_ring_field) kept; otherwise the rings taken from
+/// the rows of an organised cloud (`rows` > 1, rings_from_rows) or recovered
+/// from the returns (recover_ring_structure), the field's fault said in the
+/// report's note; a ring-free scan left without rings (the calibrator
+/// accumulates it instead).
+L2S_EXPORT SweptRings settle_rings(LidarCloud& cloud, std::size_t rows = 1);
 
 }  // namespace l2s::io

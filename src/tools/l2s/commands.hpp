@@ -6,6 +6,7 @@
 
 #include <l2s/calibrator.hpp>
 #include <l2s/io/dataset.hpp>
+#include <l2s/recording/frame_pairing.hpp>
 
 #include <functional>
 #include <string>
@@ -28,6 +29,14 @@ void add_suite_command(CLI::App& app, Runner& runner);
 void add_detect_command(CLI::App& app, Runner& runner);
 void add_check_command(CLI::App& app, Runner& runner);
 void add_extract_command(CLI::App& app, Runner& runner);
+
+/// The options that choose a recording's topics and pair its messages
+/// (`--lidar-topic`, ..., `--tolerance`); `lidar2`: with --lidar2-topic.
+void add_recording_options(CLI::App* command, RecordingTopics& topics, PairingParams& pairing, bool lidar2);
+
+struct CalibrateOptions;
+/// `l2s calibrate RECORDING` on a ROS 1 bag (calibrate_recording.cpp); the exit code.
+int calibrate_recording(const CalibrateOptions& options);
 
 /// What `l2s calibrate` passes on for a lidar-lidar dataset.
 struct LidarPairRun {

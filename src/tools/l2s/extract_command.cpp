@@ -47,25 +47,29 @@ int extract(const ExtractRun& run) {
 
 }  // namespace
 
+void add_recording_options(CLI::App* command, RecordingTopics& topics, PairingParams& pairing, bool lidar2) {
+  command->add_option("--lidar-topic", topics.lidar, "sensor_msgs/PointCloud2 topic of the lidar");
+  if (lidar2)
+    command->add_option("--lidar2-topic", topics.lidar2,
+                        "PointCloud2 topic of a second lidar: a lidar-lidar dataset, no cameras");
+  command->add_option("--left-topic", topics.left, "image topic of the left (or only) camera");
+  command->add_option("--right-topic", topics.right, "image topic of the right camera");
+  command->add_option("--left-info-topic", topics.left_info, "camera_info of the left camera");
+  command->add_option("--right-info-topic", topics.right_info, "camera_info of the right camera");
+  command->add_option("--tolerance", pairing.tolerance_s,
+                      "[s] stamp tolerance of a sweep and its image (default: half the lidar's period)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--stereo-tolerance", pairing.stereo_tolerance_s, "[s] left-right stamp tolerance")
+      ->check(CLI::NonNegativeNumber);
+}
+
 void add_extract_command(CLI::App& app, Runner& runner) {
   auto* command = app.add_subcommand("extract", "Write a ROS 1 recording as a dataset folder (DATASET.md)");
   auto run = std::make_shared<ExtractRun>();
   command->add_option("recording", run->recording, "ROS 1 .bag file")->required();
   command->add_option("out_dir", run->folder, "dataset folder to write (new, or empty)")->required();
   command->add_option("--target", run->target, "target.yaml of the board (default: the default board)");
-  command->add_option("--lidar-topic", run->options.topics.lidar, "sensor_msgs/PointCloud2 topic of the lidar");
-  command->add_option("--lidar2-topic", run->options.topics.lidar2,
-                      "PointCloud2 topic of a second lidar: a lidar-lidar dataset, no cameras");
-  command->add_option("--left-topic", run->options.topics.left, "image topic of the left (or only) camera");
-  command->add_option("--right-topic", run->options.topics.right, "image topic of the right camera");
-  command->add_option("--left-info-topic", run->options.topics.left_info, "camera_info of the left camera");
-  command->add_option("--right-info-topic", run->options.topics.right_info, "camera_info of the right camera");
-  command->add_option("--tolerance", run->options.pairing.tolerance_s,
-                      "[s] stamp tolerance of a sweep and its image (default: half the lidar's period)")
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--stereo-tolerance", run->options.pairing.stereo_tolerance_s,
-                      "[s] left-right stamp tolerance")
-      ->check(CLI::NonNegativeNumber);
+  add_recording_options(command, run->options.topics, run->options.pairing, true);
   command->callback([&runner, run] { runner = [run] { return extract(*run); }; });
 }
 
