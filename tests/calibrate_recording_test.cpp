@@ -1,12 +1,14 @@
 // `l2s calibrate RECORDING`: a recording written by ROS's own bag writer
 // (Debian's python3-rosbag, lz4 chunks) from a simulated stereo + VLP-16
 // dataset calibrates to the same transform as the dataset folder `l2s
-// extract` writes from it, without writing one itself.
+// extract` writes from it, without writing one itself; so does a
+// lidar-lidar recording.
 
 #include <l2s/io/target_yaml.hpp>
 #include <l2s/io/transform_yaml.hpp>
 #include <l2s/metrics.hpp>
 #include <l2s/recording/ros1_bag.hpp>
+#include <l2s/sim/lidar_pair.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include "support/ros1_bag_writer.hpp"
@@ -129,6 +131,50 @@ TEST(CalibrateRecording, GivesTheTransformOfItsExtractedFolder) {
               apart.rotation * 180.0 / M_PI, error.translation * 1e3, error.rotation * 180.0 / M_PI);
   EXPECT_LT(error.translation, 0.03) << bag_log;
   EXPECT_LT(error.rotation * 180.0 / M_PI, 0.5) << bag_log;
+}
+
+TEST(CalibrateRecording, ALidarPairRecordingGivesTheTransformOfItsExtractedFolder) {
+  l2s::sim::LidarPairConfig pair;
+  pair.base = l2s::sim::SimulationConfig::paper(1, "vlp16");
+  pair.base.frames = 4;
+  pair.base.seed = 8;
+  pair.lidar2 = "hdl32";
+  const l2s::sim::LidarPairSimulator sim(pair);
+  const std::vector<l2s::test::CloudField> layout = {{"x", 7}, {"y", 7}, {"z", 7}, {"intensity", 7}, {"ring", 4}};
+  std::vector<l2s::test::BagMessageToWrite> messages;
+  for (int k = 0; k < sim.frames(); ++k) {
+    const auto frame = sim.frame(k);
+    const std::int64_t t = kStart + k * kPeriod, t2 = t + 20000000;  // the second lidar 20 ms later
+    messages.push_back({"/vlp16/points", "sensor_msgs/PointCloud2", t,
+                        l2s::test::point_cloud2_message(frame.lidar, layout, t, "vlp16")});
+    messages.push_back({"/hdl32/points", "sensor_msgs/PointCloud2", t2,
+                        l2s::test::point_cloud2_message(frame.lidar2, layout, t2, "hdl32")});
+  }
+  const l2s::test::TempDir dir;
+  const std::string bag = dir.file("pair.bag");
+  l2s::test::write_ros1_bag(bag, messages, "lz4", 2);
+  l2s::io::write_target(dir.file("target.yaml"), pair.base.target);
+  const std::string topics = " --lidar-topic /vlp16/points --lidar2-topic /hdl32/points --target " +
+                             dir.file("target.yaml");
+
+  const auto [bag_status, bag_log] = l2s_run(dir, "calibrate " + bag + topics);
+  ASSERT_EQ(bag_status, 0) << bag_log;
+  EXPECT_NE(bag_log.find("lidar-lidar"), std::string::npos) << bag_log;
+  const auto [extract_status, extract_log] = l2s_run(dir, "extract " + bag + " " + dir.file("pair") + topics);
+  ASSERT_EQ(extract_status, 0) << extract_log;
+  const auto [folder_status, folder_log] =
+      l2s_run(dir, "calibrate " + dir.file("pair") + " -o " + dir.file("from_folder.yaml"));
+  ASSERT_EQ(folder_status, 0) << folder_log;
+
+  // The result lands beside the recording by default.
+  const std::string key = "T_lidar_lidar2";
+  const l2s::PoseError apart = l2s::pose_error(l2s::io::read_transform(dir.file("pair_calibration.yaml"), key),
+                                               l2s::io::read_transform(dir.file("from_folder.yaml"), key));
+  EXPECT_LT(apart.translation, 1e-4) << bag_log << folder_log;
+  EXPECT_LT(apart.rotation * 180.0 / M_PI, 1e-3);
+  const l2s::PoseError error =
+      l2s::pose_error(l2s::io::read_transform(dir.file("pair_calibration.yaml"), key), sim.T_lidar_lidar2());
+  EXPECT_LT(error.translation, 0.03) << bag_log;
 }
 
 TEST(CalibrateRecording, TopicOptionsOnAFolderAreRefusedInOneLine) {

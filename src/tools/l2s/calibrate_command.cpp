@@ -5,6 +5,7 @@
 // non-zero and writes no result (unless --keep-failed); a suspect one warns
 // loudly.
 
+#include "calibrate_options.hpp"
 #include "calibration_report.hpp"
 #include "commands.hpp"
 #include "frame_feed.hpp"
@@ -29,9 +30,18 @@ namespace {
 int calibrate_dataset(const CalibrateOptions& options) {
   const auto dataset = open_dataset_warning(options.input);
   const Calibrator::Params params = params_from(options.preset, options.params_file);
-  if (dataset.has_lidar2())  // DATASET.md: lidar/ with lidar2/ is lidar-lidar
-    return calibrate_lidar_pair(dataset, {params, options.params_file.empty() ? options.preset : options.params_file,
-                                          options.output, options.frames, options.verbose});
+  if (dataset.has_lidar2()) {  // DATASET.md: lidar/ with lidar2/ is lidar-lidar
+    LidarPairInput input;
+    input.source = options.input;
+    input.default_output = (fs::path(options.input) / "calibration.yaml").string();
+    input.target = dataset.target();
+    input.truth = dataset.ground_truth();
+    input.frames = dataset.size();
+    input.read_frames = [&dataset](std::size_t count, const std::function<void(const io::Frame&)>& visit) {
+      for (std::size_t i = 0; i < count; ++i) visit(dataset.load(i));
+    };
+    return calibrate_lidar_pair(input, lidar_pair_run(options, params));
+  }
   // A dataset with the left camera alone is lidar-mono: the board by its markers.
   Calibrator calibrator = dataset.mono()
                               ? Calibrator(dataset.cameras().left, dataset.cameras().images, dataset.target(), params)
@@ -89,12 +99,12 @@ void add_calibrate_command(CLI::App& app, Runner& runner) {
   auto* recording = command->add_option_group("recording", "A ROS 1 recording's board, topics and pairing");
   recording->add_option("--target", options->target, "target.yaml of the board (default: the default board)")
       ->check(CLI::ExistingFile);
-  add_recording_options(recording, options->topics, options->pairing, false);
+  add_recording_options(recording, options->topics, options->pairing, true);
   command->callback([&runner, options] {
     runner = [options] {
       if (is_ros1_bag(options->input)) return calibrate_recording(*options);
       const RecordingTopics& t = options->topics;
-      const bool recording_options = !options->target.empty() || !t.lidar.empty() || !t.left.empty() ||
+      const bool recording_options = !options->target.empty() || !t.lidar.empty() || !t.lidar2.empty() || !t.left.empty() ||
                                      !t.right.empty() || !t.left_info.empty() || !t.right_info.empty() ||
                                      options->pairing.tolerance_s != PairingParams{}.tolerance_s ||
                                      options->pairing.stereo_tolerance_s != PairingParams{}.stereo_tolerance_s;

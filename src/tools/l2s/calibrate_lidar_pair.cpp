@@ -1,5 +1,5 @@
-// l2s calibrate on a lidar-lidar dataset (lidar/ + lidar2/): streams both
-// sweeps of each frame through the LidarPairCalibrator, prints the transform,
+// l2s calibrate on a lidar-lidar dataset (lidar/ + lidar2/) or recording:
+// streams both sweeps of each frame through the LidarPairCalibrator, prints the transform,
 // its poses and uncertainty and the sanity check, and writes the result.
 
 #include "commands.hpp"
@@ -14,9 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-
-namespace fs = std::filesystem;
 
 namespace l2s::cli {
 namespace {
@@ -27,21 +24,21 @@ void print_branch_failure(const std::string& id, const char* side, const BranchR
                  branch.reason.c_str());
 }
 
-void add_frames(const io::Dataset& dataset, LidarPairCalibrator& calibrator, std::size_t count, bool verbose) {
+void add_frames(const LidarPairInput& input, LidarPairCalibrator& calibrator, std::size_t count, bool verbose) {
   ProgressBar progress("calibrate", count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const io::Frame frame = dataset.load(i);
+  std::size_t added = 0;
+  input.read_frames(count, [&](const io::Frame& frame) {
     const LidarPairFrameReport report = calibrator.add(frame.lidar, frame.lidar2, frame.stem);
     if (verbose) {
       print_branch_failure(report.id, "lidar", report.lidar);
       print_branch_failure(report.id, "lidar2", report.lidar2);
     }
-    progress.update(i + 1);
-  }
+    progress.update(++added);
+  });
   progress.finish();
 }
 
-void print_estimate(const io::Dataset& dataset, const LidarPairCalibrator::Result& result) {
+void print_estimate(const LidarPairInput& input, const LidarPairCalibrator::Result& result) {
   print_pose("estimate", result.T_lidar_lidar2);
   std::printf("residual  rms %.2f mm over the hole centres of %d pose(s)\n", result.registration.rms * 1e3,
               std::max(1, result.poses_used()));
@@ -50,19 +47,19 @@ void print_estimate(const io::Dataset& dataset, const LidarPairCalibrator::Resul
   std::printf("check     %s: largest pose rms %.2f mm\n", verdict_name(result.check.verdict),
               result.check.max_pose_rms * 1e3);
   for (const auto& reason : result.check.reasons) std::fprintf(stderr, "  check: %s\n", reason.c_str());
-  if (const auto truth = dataset.ground_truth()) {
-    print_pose("truth", *truth);
-    const PoseError error = pose_error(result.T_lidar_lidar2, *truth);
+  if (input.truth) {
+    print_pose("truth", *input.truth);
+    const PoseError error = pose_error(result.T_lidar_lidar2, *input.truth);
     std::printf("error     e_t = %.1f mm, e_r = %.3f deg\n", error.translation * 1e3, error.rotation * 180.0 / M_PI);
   }
 }
 
 }  // namespace
 
-int calibrate_lidar_pair(const io::Dataset& dataset, const LidarPairRun& run) {
-  LidarPairCalibrator calibrator(dataset.target(), run.params);
-  const std::size_t count = run.frames > 0 ? std::min<std::size_t>(run.frames, dataset.size()) : dataset.size();
-  add_frames(dataset, calibrator, count, run.verbose);
+int calibrate_lidar_pair(const LidarPairInput& input, const LidarPairRun& run) {
+  LidarPairCalibrator calibrator(input.target, run.params);
+  const std::size_t count = run.frames > 0 ? std::min<std::size_t>(run.frames, input.frames) : input.frames;
+  add_frames(input, calibrator, count, run.verbose);
   const LidarPairCalibrator::Result result = calibrator.result();
   std::printf("lidar-lidar dataset: T_lidar_lidar2\n");
   std::printf("frames    %d: lidar found the board %d times, lidar2 %d times\n", result.frames_added,
@@ -74,10 +71,9 @@ int calibrate_lidar_pair(const io::Dataset& dataset, const LidarPairRun& run) {
     std::fprintf(stderr, "l2s: calibration failed: %s\n", result.reason.c_str());
     return 1;
   }
-  const std::string output =
-      run.output.empty() ? (fs::path(dataset.folder()) / "calibration.yaml").string() : run.output;
-  io::write_lidar_pair_result(output, result, dataset.folder(), run.preset);
-  print_estimate(dataset, result);
+  const std::string output = run.output.empty() ? input.default_output : run.output;
+  io::write_lidar_pair_result(output, result, input.source, run.preset);
+  print_estimate(input, result);
   std::printf("wrote     %s\n", output.c_str());
   return 0;
 }

@@ -3,9 +3,10 @@
 // are in, whether they came from a dataset folder or a recording: the
 // report, the overlay, the result file and the exit code.
 
+#include "calibrate_options.hpp"
+
 #include <l2s/calibrator.hpp>
 #include <l2s/io/dataset.hpp>
-#include <l2s/recording/frame_pairing.hpp>
 
 #include <Eigen/Geometry>
 #include <functional>
@@ -13,23 +14,6 @@
 #include <string>
 
 namespace l2s::cli {
-
-/// The options of `l2s calibrate`.
-struct CalibrateOptions {
-  std::string input;  ///< dataset folder or ROS 1 recording
-  std::string output;
-  std::string overlay;
-  std::string params_file;
-  std::string preset = "default";
-  // A recording's: its board (a dataset folder has its target.yaml), topics and pairing.
-  std::string target;
-  RecordingTopics topics;
-  PairingParams pairing;
-  int frames = 0;
-  int frames_ahead = 2;
-  bool verbose = false;
-  bool keep_failed = false;
-};
 
 /// What a lidar-camera calibration reads besides its frames.
 struct CalibrationInput {

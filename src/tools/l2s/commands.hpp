@@ -8,7 +8,9 @@
 #include <l2s/io/dataset.hpp>
 #include <l2s/recording/frame_pairing.hpp>
 
+#include <Eigen/Geometry>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace CLI {
@@ -46,8 +48,19 @@ struct LidarPairRun {
   int frames = 0;             ///< use only the first N frames (0: all)
   bool verbose = false;       ///< print why each frame was not used
 };
-/// `l2s calibrate` on a lidar-lidar dataset (calibrate_lidar_pair.cpp); the exit code.
-int calibrate_lidar_pair(const io::Dataset& dataset, const LidarPairRun& run);
+/// What a lidar-lidar calibration reads: its frames (the two sweeps of
+/// each, rings settled as io::Dataset loads them), board and truth.
+struct LidarPairInput {
+  std::string source;          ///< the dataset folder or recording, for the result file
+  std::string default_output;  ///< the result YAML when -o does not say
+  Target target;
+  std::optional<Eigen::Isometry3d> truth;
+  std::size_t frames = 0;      ///< frames available
+  /// Calls `visit` with each of the first `count` frames in order.
+  std::function<void(std::size_t count, const std::function<void(const io::Frame&)>& visit)> read_frames;
+};
+/// `l2s calibrate` on a lidar-lidar dataset or recording (calibrate_lidar_pair.cpp); the exit code.
+int calibrate_lidar_pair(const LidarPairInput& input, const LidarPairRun& run);
 
 // Inputs several sub-commands share (command_inputs.cpp).
 /// Whether `path` is a file that starts as a ROS bag does (recording_info.cpp).
