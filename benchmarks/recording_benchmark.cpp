@@ -1,12 +1,12 @@
 // Reading a recording: a ROS 1 bag of 1280x960 stereo pairs and HDL-64E
 // sweeps (lz4 chunks of about a megabyte, as rosbag record writes them),
-// read twice as `l2s extract` reads it (header stamps and pairing, then the
-// paired clouds and images decoded), without writing anything. Throughput
-// counts the messages' bytes; one chunk is in memory at a time.
-#include <l2s/recording/frame_pairing.hpp>
-#include <l2s/recording/point_cloud2.hpp>
+// read as `l2s extract` and `l2s calibrate RECORDING` read it
+// (l2s::RecordedFrames: header stamps, pairing and camera_info, then the
+// paired clouds and images decoded frame by frame), without writing
+// anything. Throughput counts the messages' bytes; one chunk and a few
+// frames are in memory at a time.
+#include <l2s/recording/recorded_frames.hpp>
 #include <l2s/recording/ros1_bag.hpp>
-#include <l2s/recording/ros_messages.hpp>
 #include <l2s/sim/simulation.hpp>
 
 #include "support/ros1_bag_writer.hpp"
@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <utility>
 #include <string>
 
 namespace {
@@ -46,6 +47,10 @@ const std::pair<std::string, std::size_t>& bag(int frames) {
                           l2s::test::image_message(t + 4000000, side, i.width, i.height,
                                                    i.channels == 3 ? "bgr8" : "mono8",
                                                    static_cast<std::uint32_t>(i.width * i.channels), i.pixels)});
+      messages.push_back({std::string("/stereo/") + side + "/camera_info", "sensor_msgs/CameraInfo", t + 4000000,
+                          l2s::test::camera_info_message(t + 4000000, side,
+                                                         side == std::string("left") ? simulator.cameras().left
+                                                                                     : simulator.cameras().right)});
     }
   }
   for (const auto& m : messages) bytes += m.data.size();
@@ -57,24 +62,17 @@ const std::pair<std::string, std::size_t>& bag(int frames) {
 /// Arg: frames in the bag.
 void BM_ReadAndPairBag_Hdl64Stereo1280x960(benchmark::State& state) {
   const auto& [path, bytes] = bag(static_cast<int>(state.range(0)));
-  const std::vector<std::string> topics = {"/velodyne_points", "/stereo/left/image_rect", "/stereo/right/image_rect"};
   std::size_t frames = 0;
   for (auto _ : state) {
     const l2s::Ros1Bag recording(path);
-    std::map<std::string, std::vector<std::int64_t>> stamps;
-    recording.read(topics, [&](const l2s::RecordedMessage& m) {
-      stamps[m.topic].push_back(l2s::header_stamp_ns(m.data));
+    const l2s::RecordedFrames recorded(recording);
+    frames = 0;
+    recorded.read([&](l2s::RecordedFrame&& frame) {
+      benchmark::DoNotOptimize(frame.frame.lidar.size());
+      benchmark::DoNotOptimize(frame.frame.left.pixels.data());
+      ++frames;
       return true;
     });
-    const auto pairing = l2s::pair_in_time(stamps[topics[0]], stamps[topics[1]], stamps[topics[2]]);
-    recording.read(topics, [&](const l2s::RecordedMessage& m) {
-      if (m.topic == topics[0])
-        benchmark::DoNotOptimize(l2s::decode_point_cloud2(m.data).cloud.size());
-      else
-        benchmark::DoNotOptimize(l2s::decode_image(m.data).image.pixels.data());
-      return true;
-    });
-    frames = pairing.frames.size();
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * bytes));
   state.counters["frames"] = static_cast<double>(frames);
