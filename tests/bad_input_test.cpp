@@ -1,4 +1,4 @@
-// The README's bad-input table, one test per row: each public entry point
+// The bad-input table of docs/library.md, one test per row: each public entry point
 // given a typical fault answers with the documented error type and a message
 // that names the file, field or input. Keep the two in step: a row without a
 // test here (or a test without a row) is a bug of the table.

@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kFrames = 30;
 
-// Error bounds per setting: twice what each preset measured (README,
+// Error bounds per setting: twice what each preset measured (docs/simulator_and_suite.md,
 // "Accuracy"), and never below 1 mm / 0.05 deg, so that a regression of
 // either preset on any setting fails while the last digits of a platform's
 // floating point do not.

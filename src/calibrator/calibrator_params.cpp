@@ -1,6 +1,6 @@
 // The two presets of the Calibrator: "paper" reproduces the 2017 method's
 // parameters (paper Sec. IV-B); "default" is what measures best on the
-// simulated suite (README, accuracy section).
+// simulated suite (docs/simulator_and_suite.md, "Accuracy").
 
 #include <l2s/calibrator.hpp>
 #include <l2s/error.hpp>
