@@ -127,12 +127,12 @@ class L2S_EXPORT CalibrationCheck {
     /// board, whose plane agrees by construction), and neither the edges off the board
     /// (Report::scene_misalignment, which an unsynchronised board makes)
     /// nor the lidar depths off the board (Scores::depth_tilt) agree better
-    /// there. Texture then drew the edges: random scene 1468088629, bricks
-    /// 0.8 m behind a low-contrast board, a result 0.17 deg off whose edges
-    /// aligned best 1.5 deg away, with its hole centres 9.2 mm off there
-    /// (0.2 mm at the result). A tilted camera board moves the centres at
-    /// the truth too (530559979, 1.7 deg off: 11 mm there), which the depth
-    /// guard catches, [m] > 0.
+    /// there. Texture then drew the edges: mortar joints close behind a
+    /// low-contrast board can pull the edges' best alignment a degree or
+    /// more from a right result, where the hole centres lie centimetres
+    /// apart instead of fractions of a millimetre. A tilted camera board
+    /// moves the centres at the truth too, which the depth guard catches,
+    /// [m] > 0.
     double refuting_center_offset = 0.006;
     /// Share of the lidar returns of the scene whose depth agrees with
     /// stereo below which the result is suspect / failed: a right transform

@@ -141,10 +141,10 @@ class CameraHypothesisTester {
   /// Rims too faint for an edge per sample (a gray board before a gray
   /// wall) are confirmed by their brightness step summed along arcs: where
   /// that tells the rims from the face around them better than the edges
-  /// do, it is the rims' evidence. Random scene 1101176455 (a low-contrast
-  /// board 2.3 m away before a plain wall): two holes' rims were 3-5 gray
-  /// levels of step over 5 px, 20 % of the rim samples found an edge and
-  /// the board was lost in every frame.
+  /// do, it is the rims' evidence. A low-contrast board before a plain wall
+  /// of nearly its gray shows rims of 3-5 gray levels of step over 5 px:
+  /// about one rim sample in five finds an edge, too few to keep the board,
+  /// while the step summed along each arc stands well above the noise.
   void confirm_faint_rims(const Eigen::Isometry3d& T_camera_board, BoardEvidence& evidence) const {
     const RimSteps steps = rim_steps(f_.left_gray, f_.right_gray, f_.cameras, f_.target, T_camera_board);
     if (!(std::isfinite(steps.rims) && std::isfinite(steps.face))) return;

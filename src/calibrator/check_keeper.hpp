@@ -7,8 +7,9 @@
 //    the transform. Kept only while there are fewer board frames than the
 //    target: a ring-free lidar finds the board once per accumulated window,
 //    so a 30-frame calibration had one board frame to check against, and one
-//    frame's evidence can prefer a wrong transform (random scene 1807015301:
-//    a result 180 deg off was `ok`; eight frames tell the right one apart).
+//    frame's evidence can prefer a wrong transform (a board alone is
+//    symmetric under a half turn: one frame's edges can fit a result turned
+//    180 deg as well; eight frames of the scene around it tell them apart).
 // In each stream every stride-th frame is kept; when more than twice the
 // target are held, the stride doubles and the frames off the new stride go.
 

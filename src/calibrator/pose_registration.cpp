@@ -217,12 +217,13 @@ Plane camera_plane(const HoleCenters& centers) {
 /// rim crossings. Those are off by 0.1-0.6 mm, the cameras' rim centres by
 /// 0.05 mm across the line of sight but 0.3-0.9 mm along it, and the normal
 /// through those four centres tilts by about 1 mrad with them (nine
-/// settings, VLP-16, K = 1, 3 poses of 10 frames, seed 1). Median e_t / e_r
-/// of those runs: with the clustered centres' weights (the defaults),
-/// 1.84 mm / 0.031 deg; with these, 0.69 mm / 0.017 deg; on seed 2 (held out)
-/// 1.53 mm / 0.032 deg -> 0.86 mm / 0.018 deg. Clustered lidar centres keep
-/// the defaults: with these weights they gave 2.33 mm / 0.069 deg on seed 1
-/// (defaults: 1.29 mm / 0.034 deg), their 1-1.5 mm biases then outweigh the planes.
+/// settings, VLP-16, K = 1, 3 poses of 10 frames). Median e_t / e_r of
+/// those runs: with the clustered centres' weights (the defaults),
+/// 1.84 mm / 0.031 deg; with these, 0.69 mm / 0.017 deg; on recordings of
+/// another seed, held out, 1.53 mm / 0.032 deg -> 0.86 mm / 0.018 deg.
+/// Clustered lidar centres keep the defaults: with these weights they gave
+/// 2.33 mm / 0.069 deg (defaults: 1.29 mm / 0.034 deg), their 1-1.5 mm
+/// biases then outweigh the planes.
 /// So do fitted ones whose holes look smaller than they are: a beam
 /// footprint (the simulator's, 4.5 mm smaller radius at 3-4 m) biased them by
 /// 1-1.7 mm, and these weights made the nine settings 3.55 mm / 0.069 deg
@@ -241,8 +242,8 @@ BoardPlaneWeights camera_pose_weights(bool sharp_rims) {
 /// The joint centre fit refined with the board planes of the used poses
 /// (board_plane_refinement.hpp), when there are two or more. Residuals,
 /// uncertainty and the leave-one-pose-out shifts stay those of the centre
-/// fit. Measured on the nine settings (VLP-16, K = 1, 10 frames a pose,
-/// seed 1): 3 poses, median 2.1 -> 1.3 mm and 0.068 -> 0.034 deg; 1 pose,
+/// fit. Measured on the nine settings (VLP-16, K = 1, 10 frames a pose):
+/// 3 poses, median 2.1 -> 1.3 mm and 0.068 -> 0.034 deg; 1 pose,
 /// 1.4 -> 1.9 mm and 0.065 -> 0.060 deg. One pose's camera plane offset is
 /// then trusted beyond its accuracy, so a single pose keeps the centre fit.
 void refine_with_planes(Calibrator::Result& result) {

@@ -34,9 +34,9 @@ bool adopt(Calibrator::Result& result, const CalibrationCheck::Alternative& turn
 /// The check frames with the board evidence taken out where a sensor's
 /// detection was an outlier of its pose (PoseReport::*_outlier_frames): the
 /// fit left that detection out, and the check must not judge the transform
-/// by it either. Random scene 399770965 (6.7 mm off) was `failed`, its board
-/// "2.7 m" from the lidar's: of its two camera detections one had taken a
-/// tile wall 6.3 m away for the board. The frame's edges and depth stay.
+/// by it either: a camera detection that took a tiled wall metres behind the
+/// board for the board would put "the board" metres from the lidar's and
+/// fail a right result. The frame's edges and depth stay.
 std::vector<CheckFrame> without_outlier_boards(const std::vector<CheckFrame>& frames, const Calibrator::Result& result) {
   std::set<std::string> lidar_wrong, camera_wrong;
   const auto name = [&](int f) { return f >= 0 && f < static_cast<int>(result.frames.size()) ? result.frames[f].id : ""; };

@@ -131,11 +131,11 @@ double face_edge_fraction(const Params& params, const Target& target, const std:
 /// attempt that converges is kept, else the first one's failure: a
 /// refinement that diverged there marks a wrong hypothesis
 /// (camera_branch.cpp), and the first-edge rule can settle near such a pose
-/// without converging (random scene 11: a brick-red board rolled 90 deg by
-/// its circles, 32 % of the rims on an edge, where the strongest edges
-/// diverged to rms 50 px). Not the first edge at the lowered threshold: the
-/// first bump above 2-3 gray levels / px is found on any wall, and a patch of
-/// tiled wall 5-6 m away converged as the board (random scene 1405632196).
+/// without converging (a hypothesis rolled 90 deg by its circles, with a
+/// third of the rims on an edge, where the strongest edges diverge to tens
+/// of pixels). Not the first edge at the lowered threshold: the first bump
+/// above 2-3 gray levels / px is found on any wall, and a patch of tiled
+/// wall metres behind the board would converge as the board.
 BoardPoseRefiner::Result align(const Params& params, const std::vector<View>& views, const Rims& rims,
                                const std::vector<Sample>& anchors, const Eigen::Isometry3d& T_camera_board,
                                const cv::Mat& pixels_left, const cv::Mat& pixels_right) {

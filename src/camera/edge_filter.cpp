@@ -213,8 +213,8 @@ std::vector<int> most_supported_line(const std::vector<Eigen::Vector2d>& uv, con
 /// [t0, t1]: board points in a band beside it (beyond the stereo's fattening
 /// of the border) are counted on each side. A long level line inside the
 /// board (wood grain, a printed stripe) has board on both sides; removing it
-/// as a border spent the budget of border lines and left the real border to
-/// pull the circles (random scene 537407694: grain along the rows).
+/// as a border would spend the budget of border lines and leave the real
+/// border to pull the circles.
 bool board_on_one_side(const Line2& line, double t0, double t1, const std::vector<Eigen::Vector2d>& board_uv) {
   constexpr double kNear = 0.03, kFar = 0.08;  // [m] the band beside the line
   constexpr double kOuterShare = 0.25;         // the outer side holds at most this share of the inner's points

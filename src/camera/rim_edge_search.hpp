@@ -79,9 +79,9 @@ class EdgeSearch {
   /// seen through the hole need not be. Bricks or tiles behind a hole put
   /// edges a pixel or two inside the rim that are stronger than a
   /// low-contrast rim, and the strongest peak then follows them: on a gray
-  /// board before bricks (random scene 1037259372) a refinement started at
-  /// the true pose did not converge and ended 31 mm and 4.7 deg off (1.8 mm,
-  /// 0.23 deg and converged with this rule). A peak is a sample that is the
+  /// board before bricks a refinement started at the true pose can follow
+  /// the joints centimetres and degrees away, where the first peak from the
+  /// board's side stays on the rim. A peak is a sample that is the
   /// largest within +-1 px and reaches min_edge_strength and kFirstEdgeShare
   /// of the strongest.
   bool peak(int lo, int hi, int board_side, double& along) const;

@@ -33,9 +33,9 @@ void score_edges(const detail::EdgeSums& sums, CalibrationCheck::Scores& s) {
 /// `most_edges` (the most that any hypothesis brings into the image) that
 /// land on image edges: a hypothesis that sends edges out of the image must
 /// not win by the few it keeps, and one that brings more in must not score
-/// above 1 by their number (shares of the checked transform's count did: a
-/// wrong one turning far ground returns up onto a textured image scored 2.06
-/// against the right one's 0.71, random scene 2095762356). `at_alignment`,
+/// above 1 by their number (as shares of the checked transform's count, a
+/// wrong one turning far ground returns up onto a textured image would
+/// score about three times the right one). `at_alignment`,
 /// when given, receives the scores at that best alignment (with edges).
 CalibrationCheck::Scores score(const detail::SceneScorer& scorer, const Eigen::Isometry3d& T_camera_lidar,
                                int most_edges, const detail::LeftView& view, double depth,

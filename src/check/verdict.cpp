@@ -42,9 +42,10 @@ void judge_board(const CalibrationCheck::Report& r, const CalibrationCheck::Para
                    s.plane_offset * 1e3, s.plane_offset_px));
   // On a face textured along the rows SGBM fills the board in from its
   // surroundings: it measures the board too poorly to fail a result by
-  // itself (random scene 2094806729, wood grain 86 % along the rows, 3.4 mm
-  // off: the stereo plane 3.3 px before the rims'). A wrong target size or
-  // baseline also shifts the lidar depths against the stereo's off the board.
+  // itself (wood grain along the rows puts the stereo plane a few px of
+  // disparity before the rims' on a board whose result is millimetres
+  // right). A wrong target size or baseline also shifts the lidar depths
+  // against the stereo's off the board.
   const bool row_texture = s.stereo_row_texture >= p.row_texture_share;
   j.grade(s.stereo_offset_px, row_texture ? p.row_texture_stereo_offset_px : p.suspect_stereo_offset_px,
           row_texture ? std::numeric_limits<double>::infinity() : p.failed_stereo_offset_px,
@@ -103,18 +104,19 @@ bool beyond_its_peak(const std::array<CalibrationCheck::DofPeak, 6>& peaks, doub
 /// here and beyond it there. An unsynchronised board also agrees with the
 /// transform and not with the scene's alignment, so the edges off the board
 /// must not point elsewhere; nor may the depths off the board favour the
-/// optimum: random scene 530559979, a result 1.7 deg off (its camera board
-/// tilted), had lidar depths tilted 1.67 +- 0.01 deg against the stereo's
-/// there (below the 2 deg rule), and its edges' optimum, 1.9 deg towards the
-/// truth, put its hole centres 11 mm off the camera's.
+/// optimum: a result turned by a tilted camera board has its edges' optimum
+/// towards the truth, where its hole centres also lie off the camera's
+/// (the tilted board moved them), and lidar depths tilted against the
+/// stereo's by less than the depth rule's limit but consistently from frame
+/// to frame.
 ///
 /// Fitted to one board pose, the plane tilt refutes nothing: the fit copied
 /// the camera board's normal into the transform, and that normal is what
 /// hole rims fix worst on a distant board, so a wrong one turns the result
-/// about the board, where the edges see it only by parallax. Random scene
-/// 530559979 (a white board 0.87 m before a white wall, rims tilted 2.7 deg)
-/// was ok 185 mm / 2.7 deg off: its edges aligned best 0.50 deg away, where
-/// the lidar board tilted 2.7 deg against that camera board.
+/// about the board, where the edges see it only by parallax: a white board
+/// before a white wall whose rims tilt the camera board by a few degrees
+/// gives a result that far off, whose edges align best a fraction of a
+/// degree away, where the lidar board tilts against that camera board.
 bool board_refutes(const CalibrationCheck::Report& r, const CalibrationCheck::Params& p, double fx,
                    BoardEvidence board) {
   if (!r.optimum_board) return false;
