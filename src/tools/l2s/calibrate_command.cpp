@@ -89,7 +89,9 @@ void add_calibrate_command(CLI::App& app, Runner& runner) {
       ->check(CLI::ExistingFile);
   command->add_option("--preset", options->preset, "parameter preset")
       ->check(CLI::IsMember({"default", "paper"}));
-  command->add_option("--frames", options->frames, "use only the first N frames")->check(CLI::PositiveNumber);
+  command->add_option("--frames", options->frames, "use only the first N frames")
+      ->check(CLI::PositiveNumber)
+      ->default_str("all");
   command->add_option("--frames-ahead", options->frames_ahead,
                       "camera branches run ahead on worker threads (0: one frame at a time)")
       ->check(CLI::Range(0, 8));

@@ -101,7 +101,7 @@ void add_check_command(CLI::App& app, Runner& runner) {
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--key", options->key, "key of the transform in the file (p_lidar = T * p_camera)");
-  command->add_option("--frames", options->frames, "frames to check, evenly spread (default 8)")
+  command->add_option("--frames", options->frames, "frames to check, evenly spread")
       ->check(CLI::PositiveNumber);
   command->add_option("--params", options->params_file, "parameters YAML (branches, observer, check thresholds)")
       ->check(CLI::ExistingFile);

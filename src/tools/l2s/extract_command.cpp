@@ -51,13 +51,13 @@ void add_recording_options(CLI::App* command, RecordingTopics& topics, PairingPa
   command->add_option("--lidar-topic", topics.lidar, "sensor_msgs/PointCloud2 topic of the lidar");
   if (lidar2)
     command->add_option("--lidar2-topic", topics.lidar2,
-                        "PointCloud2 topic of a second lidar: a lidar-lidar dataset, no cameras");
+                        "PointCloud2 topic of a second lidar: lidar-lidar, no cameras");
   command->add_option("--left-topic", topics.left, "image topic of the left (or only) camera");
   command->add_option("--right-topic", topics.right, "image topic of the right camera");
   command->add_option("--left-info-topic", topics.left_info, "camera_info of the left camera");
   command->add_option("--right-info-topic", topics.right_info, "camera_info of the right camera");
   command->add_option("--tolerance", pairing.tolerance_s,
-                      "[s] stamp tolerance of a sweep and its image (default: half the lidar's period)")
+                      "[s] stamp tolerance of a sweep and its left image (0: half the lidar's median period)")
       ->check(CLI::NonNegativeNumber);
   command->add_option("--stereo-tolerance", pairing.stereo_tolerance_s, "[s] left-right stamp tolerance")
       ->check(CLI::NonNegativeNumber);

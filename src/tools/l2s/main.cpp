@@ -16,6 +16,12 @@ int main(int argc, char** argv) {
   l2s::cli::keep_large_buffers();
   CLI::App app{"l2s: automatic lidar-stereo extrinsic calibration (l2scalib)"};
   app.require_subcommand(1);
+  // Every option's help shows its default value (options added after this inherit it).
+  app.option_defaults()->always_capture_default();
+  app.footer(
+      "Exit codes: 0 success; 1 bad input or a failed job (one line on stderr naming the file and the fault); "
+      "2 bad command line; 3 a transform the scene check finds suspect (l2s check).\n"
+      "Each sub-command's options: l2s SUBCOMMAND --help. Manual: README.md and docs/ of l2scalib.");
   l2s::cli::Runner runner;
   l2s::cli::add_simulate_command(app, runner);
   l2s::cli::add_calibrate_command(app, runner);
