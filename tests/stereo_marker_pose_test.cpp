@@ -7,6 +7,7 @@
 
 #include "camera/cv_image.hpp"
 #include "camera/marker_detection.hpp"
+#include "camera/marker_pose.hpp"
 #include "camera/stereo_marker_pose.hpp"
 
 #include <gtest/gtest.h>

@@ -58,6 +58,8 @@ struct BranchReport {
   /// labelled the holes (mono; stereo: the markers' pose kept, or the stereo
   /// board's where the two agreed); 0 where the labels come from the image's up.
   int markers = 0;
+  /// Mono: where each marker found lies on the board (MonoBoardDetector::Result::placements).
+  std::vector<MonoBoardDetector::MarkerPlacement> marker_placements;
   int hypotheses = 0;             ///< board-sized planes verified before one was kept (or all failed)
   std::string note;               ///< non-fatal remark (e.g. refinement fell back to the circle fit)
   /// Lidar: the board plane its centres lie on (sensor frame, normal towards
@@ -239,6 +241,13 @@ class L2S_EXPORT Calibrator {
     /// the sensors gave them (a rig rolled against the lidar); 0: as given.
     int labels_turned = 0;
     std::vector<std::string> notes;  ///< what the calibrator decided on its own (e.g. turned labels), in words
+    /// Mono: where each marker lies on the board, the median over the
+    /// frames that placed it (`placed`: in three frames or more;
+    /// `left_out`: in most of them). A marker off its place by more than
+    /// its frames' scatter explains, and by more than 1.5 mm, is in `notes`
+    /// with its offset, so that target.yaml's `markers: centres` can be
+    /// corrected.
+    std::vector<MonoBoardDetector::MarkerPlacement> marker_placements;
     /// Board poses found in the frames (one for a static board). With
     /// several, lidar_centroids and camera_centroids are those of the first
     /// used pose, and `registration` holds the joint fit (its residuals: rms

@@ -29,7 +29,16 @@ class L2S_EXPORT MonoBoardDetector {
  public:
   struct Params {
     int min_markers = 1;               ///< fewest of the target's markers that give a pose (one gives 4 corners), >= 1
-    double max_marker_rms_px = 1.5;    ///< [px] rms of the marker corners under the PnP pose above which the pose is rejected, > 0
+    /// [px] rms the corners of a perfect print may keep under the markers'
+    /// pose: the corner detector's bias on blurred, foreshortened markers
+    /// (up to about 1.4 px on our randomised renderings), > 0. The limit the
+    /// corners must meet adds, in quadrature, three times the corner noise
+    /// measured in the image and `marker_placement_tolerance` seen at the
+    /// board's range.
+    double max_marker_rms_px = 1.5;
+    /// [m] how far a marker may lie off its place in target.yaml: printed and
+    /// glued by hand, markers sit a few millimetres off, > 0.
+    double marker_placement_tolerance = 0.005;
     bool refine_with_rims = true;      ///< refine the marker pose with the hole rims in the image (one fit of rims and marker corners)
     double marker_weight = 5.0;        ///< in that fit, each marker corner coordinate weighs as this many rim samples (0: rims alone), >= 0
     BoardPoseRefiner::Params rims;     ///< the rim refinement (its use_right_image is ignored: one view)
@@ -45,6 +54,17 @@ class L2S_EXPORT MonoBoardDetector {
     std::array<Eigen::Vector2d, 4> corners_px{};  ///< [px] in the image as given (raw or rectified), ArUco order
   };
 
+  /// Where a marker lies on the board, seen under a pose its own corners
+  /// did not set (Result::placements), so its error does not hide in it.
+  struct MarkerPlacement {
+    int id = -1;
+    bool placed = false;            ///< measured (false: no pose that pins the board apart from it)
+    Eigen::Vector2d offset = Eigen::Vector2d::Zero();  ///< [m] its centre against target.yaml's, board frame x y
+    double rotation_deg = 0.0;      ///< [deg] its turn in the board plane (target.yaml cannot hold one)
+    double rms_px = 0.0;            ///< [px] its corners' rms under that pose
+    bool left_out = false;          ///< the others agree and it does not: the pose rests on them alone
+  };
+
   struct Result {
     bool found = false;          ///< four hole centres
     std::string failed_stage;    ///< "markers", "pose" or "" on success
@@ -54,7 +74,14 @@ class L2S_EXPORT MonoBoardDetector {
     Eigen::Isometry3d T_camera_board_markers = Eigen::Isometry3d::Identity();  ///< the markers' pose before the rims
     std::vector<Marker> markers;  ///< the target's markers found (others in the dictionary are ignored)
     int markers_expected = 0;     ///< markers the target carries
-    double marker_rms_px = 0.0;   ///< [px] corner rms under the markers' PnP pose (rectified pixels)
+    double marker_rms_px = 0.0;   ///< [px] corner rms under the markers' PnP pose (rectified pixels), of the markers kept
+    double marker_rms_limit_px = 0.0;  ///< [px] the rms the corners had to meet (Params::max_marker_rms_px)
+    double corner_sigma_px = 0.0;      ///< [px] corner noise measured on the markers' edges in this image
+    /// Each marker found, placed on the board under the rim-refined pose
+    /// (the rims pin the board apart from the markers). Without the rims
+    /// only a marker left out is placed (under the pose of the others,
+    /// which agree); the others are not (`placed` false).
+    std::vector<MarkerPlacement> placements;
     bool rim_refined = false;     ///< the centres come from the rim refinement
     double rim_rms_px = 0.0;      ///< [px] rms of the rim fit, when refined
     std::string note;             ///< e.g. why the rim refinement was not kept

@@ -3,6 +3,7 @@
 #include "calibrator/branches.hpp"
 #include "calibrator/check_keeper.hpp"
 #include "calibrator/lidar_detector.hpp"
+#include "calibrator/marker_placements.hpp"
 #include "calibrator/pose_registration.hpp"
 #include "calibrator/result_check.hpp"
 #include "detail/board_frame.hpp"
@@ -462,6 +463,11 @@ bool Calibrator::mono() const { return impl_->mono != nullptr; }
 Calibrator::Result Calibrator::result() const {
   const Impl& impl = *impl_;
   Result result = impl.registered();
+  if (impl.mono) {
+    detail::MarkerPlacements markers = detail::summarise_marker_placements(result.frames);
+    result.marker_placements = std::move(markers.markers);
+    result.notes.insert(result.notes.end(), markers.notes.begin(), markers.notes.end());
+  }
   if (!result.found)
     result.quality.reasons = {"no transform to check: " + result.reason};
   else if (impl.params.check_result)

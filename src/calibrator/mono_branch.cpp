@@ -10,6 +10,7 @@ BranchReport run_mono_branch(const Image& left, const MonoBoardDetector& detecto
   report.reason = detected.reason;
   report.markers = static_cast<int>(detected.markers.size());
   report.note = detected.note;
+  report.marker_placements = detected.placements;
   if (!detected.found) return report;
   report.centers = detected.centers;
   report.rim_rms_px = detected.rim_rms_px;

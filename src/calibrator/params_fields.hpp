@@ -284,6 +284,7 @@ template <class V>
 void visit(V& v, MonoBoardDetector::Params& p) {
   v.field("min_markers", p.min_markers);
   v.field("max_marker_rms_px", p.max_marker_rms_px);
+  v.field("marker_placement_tolerance", p.marker_placement_tolerance);
   v.field("refine_with_rims", p.refine_with_rims);
   v.field("marker_weight", p.marker_weight);
   v.section("rims", [&](V& s) { visit(s, p.rims); });

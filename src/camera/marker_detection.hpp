@@ -1,5 +1,5 @@
 #pragma once
-// The target's ArUco markers in one image, and the board pose they give.
+// The target's ArUco markers in one image (the pose they give: marker_pose.hpp).
 
 #include <l2s/mono_board_detector.hpp>
 
@@ -25,15 +25,5 @@ std::optional<std::array<Eigen::Vector3d, 4>> board_corners(const MonoBoardDetec
 /// rim refinement fits together with the rims (board frame and pixel).
 std::vector<BoardPoseRefiner::PointObservation> corner_observations(const std::vector<MonoBoardDetector::Marker>& markers,
                                                                     const MarkerLayout& layout);
-
-/// Board pose from marker corners (in pixels of the ideal camera `camera`:
-/// P, no distortion) by PnP over all their corners.
-struct MarkerPose {
-  bool found = false;
-  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();
-  double rms_px = 0.0;  ///< [px] corner reprojection rms
-};
-MarkerPose pose_from_markers(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
-                             const CameraInfo& camera);
 
 }  // namespace l2s::detail

@@ -8,10 +8,12 @@
 #include "camera/stereo_marker_pose.hpp"
 
 #include "camera/marker_detection.hpp"
+#include "camera/marker_pose.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <set>
 
 namespace l2s::detail {
 namespace {
@@ -123,6 +125,61 @@ StereoMarkerPose stereo_pose_from_markers(const std::vector<MonoBoardDetector::M
   // The board faces the camera: its z axis (out of the front face) points back at it.
   pose.found = T.translation().z() > 0.0 && T.linear().col(2).dot(T.translation()) < 0.0;
   return pose;
+}
+
+namespace {
+
+std::vector<MonoBoardDetector::Marker> without_id(const std::vector<MonoBoardDetector::Marker>& markers, int id) {
+  std::vector<MonoBoardDetector::Marker> rest;
+  for (const auto& marker : markers)
+    if (marker.id != id) rest.push_back(marker);
+  return rest;
+}
+
+/// [px] rms of marker `id`'s corners in both images under pose T.
+double marker_rms(const std::vector<MonoBoardDetector::Marker>& left, const std::vector<MonoBoardDetector::Marker>& right,
+                  int id, const MarkerLayout& layout, const StereoCamera& rectified, const Eigen::Isometry3d& T) {
+  double sum = 0.0;
+  int n = 0;
+  for (int image = 0; image < 2; ++image)
+    for (const auto& marker : image ? right : left) {
+      if (marker.id != id) continue;
+      const auto board = board_corners(marker, layout);
+      if (!board) continue;
+      const auto& P = image ? rectified.right.projection_matrix : rectified.left.projection_matrix;
+      for (std::size_t c = 0; c < 4; ++c, ++n) sum += (project(P, T * (*board)[c]) - marker.corners_px[c]).squaredNorm();
+    }
+  return n ? std::sqrt(sum / n) : 0.0;
+}
+
+}  // namespace
+
+StereoMarkerPose robust_stereo_pose_from_markers(const std::vector<MonoBoardDetector::Marker>& left,
+                                                 const std::vector<MonoBoardDetector::Marker>& right,
+                                                 const MarkerLayout& layout, const StereoCamera& rectified,
+                                                 double limit_px, double min_outlier_px, int& left_out_id) {
+  left_out_id = -1;
+  const StereoMarkerPose all = stereo_pose_from_markers(left, right, layout, rectified);
+  std::set<int> ids;
+  for (const auto& marker : left) ids.insert(marker.id);
+  for (const auto& marker : right) ids.insert(marker.id);
+  if (!all.found || ids.size() < 4) return all;
+  int worst = -1;
+  StereoMarkerPose rest;
+  for (const int id : ids) {
+    const StereoMarkerPose pose = stereo_pose_from_markers(without_id(left, id), without_id(right, id), layout, rectified);
+    if (pose.found && (worst < 0 || std::max(pose.rms_left_px, pose.rms_right_px) <
+                                        std::max(rest.rms_left_px, rest.rms_right_px))) {
+      worst = id;
+      rest = pose;
+    }
+  }
+  if (worst < 0) return all;
+  const double rest_rms = std::max(rest.rms_left_px, rest.rms_right_px);
+  const double odd_rms = marker_rms(left, right, worst, layout, rectified, rest.T_camera_board);
+  if (rest_rms > limit_px || odd_rms <= std::max(min_outlier_px, 3.0 * rest_rms)) return all;
+  left_out_id = worst;
+  return rest;
 }
 
 }  // namespace l2s::detail

@@ -32,4 +32,14 @@ StereoMarkerPose stereo_pose_from_markers(const std::vector<MonoBoardDetector::M
                                           const std::vector<MonoBoardDetector::Marker>& right,
                                           const MarkerLayout& layout, const StereoCamera& rectified);
 
+/// The stereo pose of the markers that agree: with four markers or more
+/// (by id, in either image), the one whose absence lets the others fit best
+/// is left out, from both images, when the others fit within `limit_px`
+/// and its corners miss their pose by more than three times their rms and
+/// by more than `min_outlier_px`. `left_out_id`: its id, or -1.
+StereoMarkerPose robust_stereo_pose_from_markers(const std::vector<MonoBoardDetector::Marker>& left,
+                                                 const std::vector<MonoBoardDetector::Marker>& right,
+                                                 const MarkerLayout& layout, const StereoCamera& rectified,
+                                                 double limit_px, double min_outlier_px, int& left_out_id);
+
 }  // namespace l2s::detail

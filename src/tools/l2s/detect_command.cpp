@@ -94,7 +94,16 @@ BranchReport detect_mono(const io::Dataset& dataset, const io::Frame& frame, con
   report.failed_stage = result.failed_stage;
   report.reason = result.reason;
   report.centers = result.centers;
-  if (!result.markers.empty()) std::printf("        marker corners rms %.3f px under the PnP pose\n", result.marker_rms_px);
+  if (!result.markers.empty())
+    std::printf("        marker corners rms %.3f px under the PnP pose (limit %.2f px: corner noise %.3f px measured on "
+                "the markers' edges, %.1f mm placement tolerance)\n",
+                result.marker_rms_px, result.marker_rms_limit_px, result.corner_sigma_px,
+                params.mono.marker_placement_tolerance * 1e3);
+  for (const auto& placement : result.placements)
+    if (placement.placed)
+      std::printf("        marker %-4d %5.1f mm off its place (x %+.1f, y %+.1f mm), turned %+.2f deg, corners %.2f px%s\n",
+                  placement.id, placement.offset.norm() * 1e3, placement.offset.x() * 1e3, placement.offset.y() * 1e3,
+                  placement.rotation_deg, placement.rms_px, placement.left_out ? ": left out of the pose" : "");
   if (result.rim_refined) std::printf("        refined with the hole rims: rms %.3f px\n", result.rim_rms_px);
   if (!result.note.empty()) std::printf("        note: %s\n", result.note.c_str());
   if (result.found)
