@@ -94,7 +94,8 @@ TEST(CalibratorMono, SaysWhereAMarkerGluedOffItsPlaceLies) {
   auto config = mono_config(1, 10);
   const Target nominal = config.target;
   const Eigen::Vector2d glued_off(-0.0030, 0.0026);  // 4.0 mm
-  config.target.markers->centres[2] += glued_off;
+  config.marker_gluing.assign(4, Eigen::Vector3d::Zero());
+  config.marker_gluing[2] << glued_off, 0.0;
   const sim::DatasetSimulator simulator(config);
   const StereoCamera cameras = simulator.cameras();
   Calibrator calibrator(cameras.left, cameras.images, nominal);

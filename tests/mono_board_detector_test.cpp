@@ -141,17 +141,19 @@ TEST(MonoBoardDetector, AnotherMarkerLayoutRendersAndIsFound) {
 }
 
 // A real board's markers are glued by hand: one of them 4 mm off its place
-// in target.yaml. The other three agree on the pose; the odd one is left
+// in target.yaml and turned 0.8 deg. The other three agree on the pose; the odd one is left
 // out and said to lie where it does, and the holes come out as right as on
 // a perfect print.
 TEST(MonoBoardDetector, AMarkerGluedFourMillimetresOffIsLeftOutAndMeasured) {
   const Target nominal = Target::with_default_markers();
-  Target printed = nominal;
   const Eigen::Vector2d glued_off(0.0035, -0.0019);  // 4.0 mm
-  printed.markers->centres[2] += glued_off;
+  const double turn_deg = 0.8;
   for (int setting : {1, 4}) {
     SCOPED_TRACE("setting " + std::to_string(setting));
-    const sim::DatasetSimulator simulator(mono_config(setting, printed));
+    auto config = mono_config(setting, nominal);
+    config.marker_gluing.assign(4, Eigen::Vector3d::Zero());
+    config.marker_gluing[2] << glued_off, turn_deg * M_PI / 180.0;
+    const sim::DatasetSimulator simulator(config);
     const MonoBoardDetector detector = detector_for(simulator, nominal);
     const auto result = detector.detect(simulator.frame(0).left);
     ASSERT_TRUE(result.found) << result.failed_stage << ": " << result.reason;
@@ -165,6 +167,7 @@ TEST(MonoBoardDetector, AMarkerGluedFourMillimetresOffIsLeftOutAndMeasured) {
       const Eigen::Vector2d truth = odd ? glued_off : Eigen::Vector2d::Zero();
       EXPECT_LT((placement.offset - truth).norm(), 0.001)
           << "marker " << placement.id << " measured " << placement.offset.transpose() * 1e3 << " mm";
+      EXPECT_NEAR(placement.rotation_deg, odd ? turn_deg : 0.0, 0.3) << "marker " << placement.id;
     }
     EXPECT_NE(result.note.find("marker " + std::to_string(nominal.markers->ids[2]) + " lies "), std::string::npos)
         << result.note;

@@ -6,7 +6,7 @@
 
 namespace l2s::sim::detail {
 
-MarkerTexture::MarkerTexture(const Target& target) {
+MarkerTexture::MarkerTexture(const Target& target, const std::vector<double>& turns) {
   if (!target.markers) return;
   const MarkerLayout& layout = *target.markers;
   const auto dictionary = l2s::detail::aruco_dictionary(layout.dictionary);
@@ -18,6 +18,8 @@ MarkerTexture::MarkerTexture(const Target& target) {
     Marker marker;
     marker.cells = cells;
     marker.cell_size = layout.size / cells;
+    marker.centre = layout.centres[i];
+    if (i < turns.size()) marker.cos_turn = std::cos(turns[i]), marker.sin_turn = std::sin(turns[i]);
     marker.top_left = layout.centres[i] + Eigen::Vector2d(-0.5 * layout.size, 0.5 * layout.size);
     marker.black.resize(static_cast<std::size_t>(cells) * cells);
     for (int r = 0; r < cells; ++r)
@@ -33,8 +35,13 @@ int MarkerTexture::cell(const Eigen::Vector2d& xy) const {
   // contrast against that margin, whatever the face around it looks like.
   constexpr double kQuietCells = 1.0;
   for (const Marker& m : markers_) {
-    const double u = (xy.x() - m.top_left.x()) / m.cell_size;  // columns to the right
-    const double v = (m.top_left.y() - xy.y()) / m.cell_size;  // rows downwards
+    // Into the marker's own axes: the point turned back about its centre.
+    const Eigen::Vector2d d = xy - m.centre;
+    const Eigen::Vector2d p = m.sin_turn == 0.0 ? xy
+                                                : Eigen::Vector2d(m.centre + Eigen::Vector2d(m.cos_turn * d.x() + m.sin_turn * d.y(),
+                                                                                             -m.sin_turn * d.x() + m.cos_turn * d.y()));
+    const double u = (p.x() - m.top_left.x()) / m.cell_size;  // columns to the right
+    const double v = (m.top_left.y() - p.y()) / m.cell_size;  // rows downwards
     if (u < -kQuietCells || v < -kQuietCells || u >= m.cells + kQuietCells || v >= m.cells + kQuietCells) continue;
     if (u < 0.0 || v < 0.0 || u >= m.cells || v >= m.cells) return 0;
     const int c = static_cast<int>(std::floor(u)), r = static_cast<int>(std::floor(v));

@@ -32,7 +32,7 @@ Shader::Shader(const RayCaster& caster, const Appearance& appearance, std::uint6
       look_(appearance),
       materials_(appearance, texture_seed),
       decals_(caster.scene().target, appearance.board, texture_seed),
-      markers_(caster.scene().target),
+      markers_(caster.scene().target, caster.scene().marker_turns),
       channels_(channels),
       pixel_angle_(pixel_angle) {}
 

@@ -21,6 +21,16 @@ namespace {
 constexpr std::uint64_t kImageStream = 0x1A6EULL;
 constexpr std::uint64_t kLidarStream = 0x71DAULL;
 
+/// The markers moved and turned where the config glues them: the scene
+/// shows them there, while the config's target keeps their nominal places.
+void apply_marker_gluing(const SimulationConfig& config, Scene& scene) {
+  if (config.marker_gluing.empty() || !scene.target.markers) return;
+  for (std::size_t i = 0; i < config.marker_gluing.size(); ++i) {
+    scene.target.markers->centres[i] += config.marker_gluing[i].head<2>();
+    scene.marker_turns.push_back(config.marker_gluing[i].z());
+  }
+}
+
 }  // namespace
 
 SimulationConfig SimulationConfig::paper(int index, const std::string& lidar) {
@@ -46,6 +56,11 @@ void SimulationConfig::validate() const {
   if (!(accumulated_crop >= 0.0 && std::isfinite(accumulated_crop)))
     throw ParamError("accumulated_crop", "must be >= 0 m (0: no crop)");
   target.validate();
+  if (!marker_gluing.empty() && (!target.markers || marker_gluing.size() != target.markers->ids.size()))
+    throw ParamError("marker_gluing", "one entry per marker of the target, or none");
+  for (const Eigen::Vector3d& gluing : marker_gluing)
+    if (!gluing.allFinite() || gluing.head<2>().norm() > 0.05 || std::abs(gluing.z()) > 0.2)
+      throw ParamError("marker_gluing", "a marker glued more than 5 cm or 0.2 rad off its place is another layout");
   if (mono && !target.markers)
     throw ParamError("mono", "a mono camera finds the board by its markers: the target has none (target.markers)");
   rig.validate();
@@ -98,6 +113,7 @@ DatasetSimulator::DatasetSimulator(SimulationConfig config) : impl_(std::make_un
     s.pose = found.pose;
   }
   s.scene = make_scene(c.target, s.pose, c.layout);
+  apply_marker_gluing(c, s.scene);
   s.caster = std::make_unique<RayCaster>(s.scene);
   s.placement = check_placement(s.scene, s.model, c.setting, c.rig);
   if (!s.placement.ok) {

@@ -72,7 +72,8 @@ struct L2S_SIM_EXPORT SceneLayout {
 
 /// The world: board, wall, ground plane and clutter, in the camera body frame.
 struct Scene {
-  Target target;
+  Target target;  ///< as built; its markers where they are glued (SimulationConfig::marker_gluing)
+  std::vector<double> marker_turns;  ///< [rad] each marker's turn in the board plane about its centre (empty: none)
   Eigen::Isometry3d T_cambody_board = Eigen::Isometry3d::Identity();
   double ground_z = -1.5;  ///< [m] height of the ground plane (z_body)
   Box wall;

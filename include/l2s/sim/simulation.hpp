@@ -47,6 +47,13 @@ struct L2S_SIM_EXPORT SimulationConfig {
   /// right.yaml or right/ (the right image is neither rendered nor written).
   /// The target must carry markers (Target::markers).
   bool mono = false;
+  /// How each of the target's markers is glued off its place in `target`
+  /// (one per marker, in layout order, or empty: all where target.yaml puts
+  /// them): x, y [m] in the board frame and the turn [rad] in the board
+  /// plane about its centre. The images show the markers where they are
+  /// glued; the dataset's target.yaml keeps the nominal places, as a user's
+  /// does.
+  std::vector<Eigen::Vector3d> marker_gluing;
 
   /// A `lidar: accumulated` dataset (DATASET.md v3) when > 0: the lidar's
   /// returns over this many seconds (10 sweeps a second) as one cloud, as
