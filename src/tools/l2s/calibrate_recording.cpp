@@ -45,7 +45,10 @@ void print_recording(const CalibrateOptions& options, const RecordedFrames& fram
                 frames.dropped().front().c_str());
 }
 
-/// The frame as the dataset reader would give it after `l2s extract`.
+/// The frame made ready as the dataset reader makes each sweep
+/// (io::settle_rings). An organised cloud keeps its rows here, which the
+/// PCD files `l2s extract` writes do not: without a ring field, its rings
+/// then come from the rows rather than from the returns.
 io::Frame ready_for_calibration(RecordedFrame&& recorded, bool lidar_pair) {
   io::Frame frame = std::move(recorded.frame);
   io::SweptRings rings = io::settle_rings(frame.lidar, recorded.lidar_rows);
