@@ -33,7 +33,7 @@ std::optional<CameraAttempt> board_from_markers(const CameraFrame& f, std::strin
   const double limit = marker_rms_limit_px(f.params.mono, f.cameras.left.fx(), all.T_camera_board.translation().norm(),
                                            corner_sigma);
   int left_out = -1;
-  const StereoMarkerPose pose = robust_stereo_pose_from_markers(left, right, layout, f.cameras, limit,
+  const StereoMarkerPose pose = robust_stereo_pose_from_markers(left, right, layout, f.cameras, all, limit,
                                                                 3.0 * std::sqrt(2.0) * corner_sigma, left_out);
   if (left_out >= 0) {
     const auto drop = [left_out](const MonoBoardDetector::Marker& m) { return m.id == left_out; };

@@ -1,7 +1,7 @@
 // Marker poses (marker_pose.hpp): the planar pose from all corners (IPPE,
-// Collins & Bartoli 2014, then Levenberg-Marquardt), each marker placed on
-// the board under the pose of the others, and the one marker that
-// disagrees with the others left out.
+// Collins & Bartoli 2014, then Levenberg-Marquardt), a marker placed on the
+// board under a given pose, and the one marker that disagrees with the
+// others left out.
 
 #include "camera/marker_pose.hpp"
 
@@ -121,38 +121,26 @@ double marker_rms_limit_px(const MonoBoardDetector::Params& params, double fx, d
 }
 
 RobustMarkerPose robust_marker_pose(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
-                                    const CameraInfo& camera, double limit_px, double min_outlier_px) {
-  RobustMarkerPose robust;
-  robust.kept = markers;
-  robust.pose = pose_from_markers(markers, layout, camera);
-  if (!robust.pose.found) return robust;
-  // Each marker under the pose of the others (two markers or more left:
-  // eight corners for six unknowns); with fewer, under the pose of all.
-  std::vector<MarkerPose> others(markers.size());
-  for (std::size_t k = 0; k < markers.size(); ++k) {
-    if (markers.size() >= 3) others[k] = pose_from_markers(without(markers, k), layout, camera);
-    const Eigen::Isometry3d& T = others[k].found ? others[k].T_camera_board : robust.pose.T_camera_board;
-    robust.placements.push_back(placement_on_board(markers[k], layout, camera, T));
-  }
-  if (markers.size() < 4) return robust;
+                                    const CameraInfo& camera, const MarkerPose& all, double limit_px,
+                                    double min_outlier_px) {
+  RobustMarkerPose robust{all, markers, {}};
+  for (const auto& marker : markers) robust.placements.push_back({marker.id});
+  if (!all.found || markers.size() < 4) return robust;
   // The marker whose absence lets the others fit best is the suspect; it is
   // left out only when the others agree and it clearly does not.
-  std::size_t worst = 0;
-  for (std::size_t k = 1; k < markers.size(); ++k)
-    if (others[k].found && (!others[worst].found || others[k].rms_px < others[worst].rms_px)) worst = k;
-  const MarkerPose& rest = others[worst];
+  std::size_t worst = markers.size();
+  MarkerPose rest;
+  for (std::size_t k = 0; k < markers.size(); ++k) {
+    const MarkerPose others = pose_from_markers(without(markers, k), layout, camera);
+    if (others.found && (worst == markers.size() || others.rms_px < rest.rms_px)) worst = k, rest = others;
+  }
+  if (worst == markers.size() || rest.rms_px > limit_px) return robust;
   const double outlier_px = std::max(min_outlier_px, 3.0 * rest.rms_px);
-  if (!rest.found || rest.rms_px > limit_px || robust.placements[worst].rms_px <= outlier_px) return robust;
+  if (corner_rms(markers[worst], layout, camera, rest.T_camera_board) <= outlier_px) return robust;
+  robust.placements[worst] = placement_on_board(markers[worst], layout, camera, rest.T_camera_board);
   robust.placements[worst].left_out = true;
   robust.kept = without(markers, worst);
   robust.pose = rest;
-  // The others were placed under poses that held the odd one: again, each
-  // under the pose of the markers kept but itself.
-  for (std::size_t k = 0, kept = 0; k < markers.size(); ++k) {
-    if (k == worst) continue;
-    const MarkerPose pose = pose_from_markers(without(robust.kept, kept++), layout, camera);
-    robust.placements[k] = placement_on_board(markers[k], layout, camera, pose.found ? pose.T_camera_board : rest.T_camera_board);
-  }
   return robust;
 }
 

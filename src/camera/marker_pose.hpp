@@ -37,18 +37,20 @@ MonoBoardDetector::MarkerPlacement placement_on_board(const MonoBoardDetector::M
 /// in quadrature.
 double marker_rms_limit_px(const MonoBoardDetector::Params& params, double fx, double range_m, double corner_sigma_px);
 
-/// The pose of the markers that agree. Each marker is placed (and its
-/// corners' rms taken) under the pose of the others, so that its own error
-/// does not hide in a pose fitted to it. With four markers or more, the one
-/// whose absence lets the others fit best is left out when the others fit
-/// within `limit_px` and its corners miss their pose by more than three
-/// times their own rms and by more than `min_outlier_px` (the corner noise).
+/// The pose of the markers that agree, from `all` (pose_from_markers of
+/// every marker). With four markers or more, the one whose absence lets the
+/// others fit best is left out when the others fit within `limit_px` and
+/// its corners miss their pose by more than three times their own rms and
+/// by more than `min_outlier_px` (the corner noise); it is then placed
+/// under their pose, which its own error did not set.
 struct RobustMarkerPose {
   MarkerPose pose;                                          ///< of the markers kept
   std::vector<MonoBoardDetector::Marker> kept;              ///< the markers the pose rests on
-  std::vector<MonoBoardDetector::MarkerPlacement> placements;  ///< every marker, under the others' pose
+  /// One per marker, in order: only the one left out is placed (`placed`).
+  std::vector<MonoBoardDetector::MarkerPlacement> placements;
 };
 RobustMarkerPose robust_marker_pose(const std::vector<MonoBoardDetector::Marker>& markers, const MarkerLayout& layout,
-                                    const CameraInfo& camera, double limit_px, double min_outlier_px);
+                                    const CameraInfo& camera, const MarkerPose& all, double limit_px,
+                                    double min_outlier_px);
 
 }  // namespace l2s::detail

@@ -129,7 +129,7 @@ Result MonoBoardDetector::detect(const Image& image) const {
   result.marker_rms_limit_px = detail::marker_rms_limit_px(params_, working_.fx(), all.T_camera_board.translation().norm(),
                                                            result.corner_sigma_px);
   const detail::RobustMarkerPose robust = detail::robust_marker_pose(
-      working, layout, working_, result.marker_rms_limit_px, 3.0 * std::sqrt(2.0) * result.corner_sigma_px);
+      working, layout, working_, all, result.marker_rms_limit_px, 3.0 * std::sqrt(2.0) * result.corner_sigma_px);
   const detail::MarkerPose& pose = robust.pose;
   result.placements = robust.placements;
   result.marker_rms_px = pose.rms_px;
@@ -161,18 +161,16 @@ Result MonoBoardDetector::detect(const Image& image) const {
       // The rims pin the board's pose apart from the markers (their corners
       // weigh as a few rim samples each): each marker is placed again
       // under it, more steadily than under the pose of two or three others.
-      for (std::size_t k = 0; k < working.size() && k < result.placements.size(); ++k) {
+      // Without the rims only a marker left out is placed (under the pose
+      // of the others, which agree): two or three small markers alone pin a
+      // far board's tilt too loosely to place one of their own.
+      for (std::size_t k = 0; k < working.size(); ++k) {
         const bool left_out = result.placements[k].left_out;
         result.placements[k] = detail::placement_on_board(working[k], layout, working_, T_working_board);
         result.placements[k].left_out = left_out;
       }
     }
   }
-  // Without the rims, a marker is placed reliably only when it was left out
-  // (under the pose of the others, which agree); two or three small markers
-  // alone pin a far board's tilt too loosely to place one of their own.
-  if (!result.rim_refined)
-    for (MarkerPlacement& placement : result.placements) placement.placed = placement.placed && placement.left_out;
   // Raw images: back from the rectified frame (p_rect = R p_camera) into K's.
   const Eigen::Isometry3d T_camera_working(
       rectifier_ ? Eigen::Matrix3d(rectifier_->R_rect_camera().transpose()) : Eigen::Matrix3d::Identity());

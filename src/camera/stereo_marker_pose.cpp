@@ -157,9 +157,9 @@ double marker_rms(const std::vector<MonoBoardDetector::Marker>& left, const std:
 StereoMarkerPose robust_stereo_pose_from_markers(const std::vector<MonoBoardDetector::Marker>& left,
                                                  const std::vector<MonoBoardDetector::Marker>& right,
                                                  const MarkerLayout& layout, const StereoCamera& rectified,
-                                                 double limit_px, double min_outlier_px, int& left_out_id) {
+                                                 const StereoMarkerPose& all, double limit_px, double min_outlier_px,
+                                                 int& left_out_id) {
   left_out_id = -1;
-  const StereoMarkerPose all = stereo_pose_from_markers(left, right, layout, rectified);
   std::set<int> ids;
   for (const auto& marker : left) ids.insert(marker.id);
   for (const auto& marker : right) ids.insert(marker.id);

@@ -32,7 +32,8 @@ StereoMarkerPose stereo_pose_from_markers(const std::vector<MonoBoardDetector::M
                                           const std::vector<MonoBoardDetector::Marker>& right,
                                           const MarkerLayout& layout, const StereoCamera& rectified);
 
-/// The stereo pose of the markers that agree: with four markers or more
+/// The stereo pose of the markers that agree, from `all`
+/// (stereo_pose_from_markers of every marker): with four markers or more
 /// (by id, in either image), the one whose absence lets the others fit best
 /// is left out, from both images, when the others fit within `limit_px`
 /// and its corners miss their pose by more than three times their rms and
@@ -40,6 +41,7 @@ StereoMarkerPose stereo_pose_from_markers(const std::vector<MonoBoardDetector::M
 StereoMarkerPose robust_stereo_pose_from_markers(const std::vector<MonoBoardDetector::Marker>& left,
                                                  const std::vector<MonoBoardDetector::Marker>& right,
                                                  const MarkerLayout& layout, const StereoCamera& rectified,
-                                                 double limit_px, double min_outlier_px, int& left_out_id);
+                                                 const StereoMarkerPose& all, double limit_px, double min_outlier_px,
+                                                 int& left_out_id);
 
 }  // namespace l2s::detail
