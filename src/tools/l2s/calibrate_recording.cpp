@@ -27,15 +27,8 @@ namespace l2s::cli {
 namespace {
 
 void print_recording(const CalibrateOptions& options, const RecordedFrames& frames) {
-  const RecordingTopics& t = frames.topics();
   std::printf("recording %s\n", options.input.c_str());
-  if (frames.lidar_pair()) {
-    std::printf("topics    lidar %s, lidar2 %s\n", t.lidar.c_str(), t.lidar2.c_str());
-  } else {
-    std::printf("topics    lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
-    if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
-    std::printf("\nimages    %s\n", frames.raw_images() ? "raw" : "rectified");
-  }
+  print_recording_topics(frames.topics(), frames.raw_images());
   std::printf("paired    %zu of %zu sweeps (tolerance %.1f ms)%s\n", frames.size(), frames.sweeps(),
               frames.tolerance_s() * 1e3, options.target.empty() ? "; board: the default one (--target names yours)" : "");
   if (options.verbose)

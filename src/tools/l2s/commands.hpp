@@ -32,6 +32,8 @@ void add_detect_command(CLI::App& app, Runner& runner);
 void add_check_command(CLI::App& app, Runner& runner);
 void add_extract_command(CLI::App& app, Runner& runner);
 
+/// Prints the topics a recording is read from (and whether its images are raw).
+void print_recording_topics(const RecordingTopics& topics, bool raw_images);
 /// The options that choose a recording's topics and pair its messages
 /// (`--lidar-topic`, ..., `--tolerance`); `lidar2`: with --lidar2-topic.
 void add_recording_options(CLI::App* command, RecordingTopics& topics, PairingParams& pairing, bool lidar2);

@@ -25,15 +25,8 @@ int extract(const ExtractRun& run) {
   if (!run.target.empty()) options.target = io::read_target(run.target);
   const Ros1Bag bag(run.recording);
   const ExtractionReport report = extract_dataset(bag, run.folder, options);
-  const RecordingTopics& t = report.topics;
   std::printf("recording %s\n", run.recording.c_str());
-  if (!t.lidar2.empty()) {
-    std::printf("topics    lidar %s, lidar2 %s: a lidar-lidar dataset\n", t.lidar.c_str(), t.lidar2.c_str());
-  } else {
-    std::printf("topics    lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
-    if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
-    std::printf("\nimages    %s\n", report.raw_images ? "raw (images: raw in dataset.yaml)" : "rectified");
-  }
+  print_recording_topics(report.topics, report.raw_images);
   std::printf("frames    %zu of %zu sweeps paired (tolerance %.1f ms)\n", report.frames, report.sweeps,
               report.tolerance_s * 1e3);
   const std::size_t shown = 10;
@@ -46,6 +39,16 @@ int extract(const ExtractRun& run) {
 }
 
 }  // namespace
+
+void print_recording_topics(const RecordingTopics& t, bool raw_images) {
+  if (!t.lidar2.empty()) {
+    std::printf("topics    lidar %s, lidar2 %s: lidar-lidar\n", t.lidar.c_str(), t.lidar2.c_str());
+    return;
+  }
+  std::printf("topics    lidar %s, left %s (%s)", t.lidar.c_str(), t.left.c_str(), t.left_info.c_str());
+  if (!t.right.empty()) std::printf(", right %s (%s)", t.right.c_str(), t.right_info.c_str());
+  std::printf("\nimages    %s\n", raw_images ? "raw (K and D apply; images: raw in dataset.yaml)" : "rectified");
+}
 
 void add_recording_options(CLI::App* command, RecordingTopics& topics, PairingParams& pairing, bool lidar2) {
   command->add_option("--lidar-topic", topics.lidar, "sensor_msgs/PointCloud2 topic of the lidar");
